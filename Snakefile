@@ -1,0 +1,32 @@
+# NPS study workflow: trim -> loads -> wake -> bvi -> acoustics -> hsi -> metrics -> figures.
+# `snakemake -j2 all` runs the campaign of config/config.yaml; `snakemake --report report.html`
+# builds the HTML report. Rules live in workflow/rules/, one file per stage.
+import os
+import sys
+
+sys.path.insert(0, workflow.basedir)
+# Scripts run from .snakemake/scripts: make the nps package importable there, keep numba's
+# on-disk cache inside the project (its key must not depend on a temporary script copy).
+os.environ.update(
+    PYTHONPATH=workflow.basedir,
+    NUMBA_CACHE_DIR=os.path.join(workflow.basedir, ".numba_cache"),
+    MPLBACKEND="Agg",
+)
+
+
+configfile: "config/config.yaml"
+
+
+report: "workflow/report/workflow.rst"
+
+
+include: "workflow/rules/common.smk"
+
+
+rule all:
+    input:
+        lambda wildcards: ALL_TARGETS,
+    default_target: True
+
+
+include: "workflow/rules/trim.smk"

@@ -1,0 +1,32 @@
+"""Command line: ``python -m nps <stage> [options]`` (``python -m nps <stage> --help``).
+
+Every stage of the workflow is usable on its own; each lives in ``nps/cli/<stage>.py`` with a
+``main(argv) -> int`` function.
+"""
+
+from __future__ import annotations
+
+import importlib
+import pkgutil
+import sys
+
+import nps.cli
+
+
+def stages() -> list[str]:
+    """Names of the available stages (modules of ``nps.cli``)."""
+    return sorted(m.name for m in pkgutil.iter_modules(nps.cli.__path__) if not m.name.startswith("_"))
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    available = stages()
+    if not argv or argv[0] in ("-h", "--help") or argv[0] not in available:
+        print("usage: python -m nps <stage> [options]\nstages: " + ", ".join(available), file=sys.stderr)
+        return 0 if argv and argv[0] in ("-h", "--help") else 2
+    module = importlib.import_module(f"nps.cli.{argv[0]}")
+    return int(module.main(argv[1:]) or 0)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

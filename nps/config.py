@@ -1,0 +1,218 @@
+"""Configuration files: loading, JSON-schema validation and cross-reference checks.
+
+Schemas live in ``workflow/schemas/`` (config, aircraft, mission). Every problem is reported
+before any computation as a :class:`ConfigError` whose lines read
+``<file>: <field path>: <what was expected>``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Iterator
+
+import jsonschema
+import yaml
+
+REPO_ROOT = Path(__file__).resolve().parents[1]
+SCHEMA_DIR = REPO_ROOT / "workflow" / "schemas"
+
+
+class ConfigError(ValueError):
+    """A configuration file is invalid; the message names file, field and expectation."""
+
+
+def _field_path(parts) -> str:
+    text = ""
+    for part in parts:
+        text += f"[{part}]" if isinstance(part, int) else (f".{part}" if text else str(part))
+    return text or "<top level>"
+
+
+def _describe(error: jsonschema.ValidationError) -> tuple[str, str]:
+    """(field path, expectation) for one schema error, in plain words."""
+    path = list(error.absolute_path)
+    kind = error.validator
+    value = error.validator_value
+    if kind == "additionalProperties":
+        allowed = sorted(error.schema.get("properties", {}))
+        extra = sorted(set(error.instance) - set(allowed))
+        return _field_path(path + [extra[0]] if extra else path), (
+            f"unknown key (typo?); allowed keys here: {', '.join(allowed)}"
+        )
+    if kind == "required":
+        missing = [name for name in value if name not in error.instance]
+        return _field_path(path + missing[:1]), "required field is missing"
+    if kind == "type":
+        return _field_path(path), f"expected {value}, got {type(error.instance).__name__} {error.instance!r}"
+    if kind in ("exclusiveMinimum", "minimum", "exclusiveMaximum", "maximum"):
+        words = {"exclusiveMinimum": "> ", "minimum": ">= ", "exclusiveMaximum": "< ", "maximum": "<= "}[kind]
+        return _field_path(path), f"expected a number {words}{value}, got {error.instance!r}"
+    if kind == "enum":
+        return _field_path(path), f"expected one of {value}, got {error.instance!r}"
+    if kind == "pattern":
+        return _field_path(path), f"expected text matching {value!r}, got {error.instance!r}"
+    if kind in ("minItems", "maxItems"):
+        return _field_path(path), f"expected a list with {kind[:3]}imum {value} item(s), got {len(error.instance)}"
+    return _field_path(path), error.message
+
+
+def _non_finite(node: Any, path: list) -> Iterator[tuple[str, str]]:
+    if isinstance(node, float) and not math.isfinite(node):
+        yield _field_path(path), f"expected a finite number, got {node!r}"
+    elif isinstance(node, dict):
+        for key, value in node.items():
+            yield from _non_finite(value, path + [key])
+    elif isinstance(node, list):
+        for index, value in enumerate(node):
+            yield from _non_finite(value, path + [index])
+
+
+def _raise(file: str | Path, problems: list[tuple[str, str]]) -> None:
+    if problems:
+        lines = [f"{file}: {field}: {what}" for field, what in sorted(set(problems))]
+        raise ConfigError("invalid configuration\n  " + "\n  ".join(lines))
+
+
+def load_schema(name: str) -> dict:
+    """The schema ``workflow/schemas/<name>.schema.yaml``."""
+    with open(SCHEMA_DIR / f"{name}.schema.yaml") as handle:
+        return yaml.safe_load(handle)
+
+
+def validate(data: Any, schema_name: str, file: str | Path) -> dict:
+    """Validate ``data`` against a schema; fill schema defaults; raise :class:`ConfigError`."""
+    if not isinstance(data, dict):
+        _raise(file, [("<top level>", f"expected a mapping, got {type(data).__name__}")])
+    problems = list(_non_finite(data, []))
+    validator = jsonschema.Draft202012Validator(load_schema(schema_name))
+    problems += [_describe(error) for error in validator.iter_errors(data)]
+    _raise(file, problems)
+    return data
+
+
+def read_yaml(path: str | Path) -> Any:
+    """Parse a YAML file; a syntax error becomes a :class:`ConfigError` naming the file."""
+    path = Path(path)
+    if not path.exists():
+        raise ConfigError(f"{path}: file not found")
+    try:
+        with open(path) as handle:
+            return yaml.safe_load(handle)
+    except yaml.YAMLError as exc:
+        raise ConfigError(f"{path}: not valid YAML: {exc}") from exc
+
+
+def load_aircraft(path: str | Path) -> dict:
+    """Read and validate one aircraft file, with its own cross checks."""
+    data = validate(read_yaml(path), "aircraft", path)
+    problems = []
+    names = [rotor["name"] for rotor in data["rotors"]]
+    for index, rotor in enumerate(data["rotors"]):
+        where = f"rotors[{index}]"
+        if names.count(rotor["name"]) > 1:
+            problems.append((f"{where}.name", f"expected a unique rotor name, '{rotor['name']}' repeats"))
+        if rotor["root_cutout_m"] >= rotor["radius_m"]:
+            problems.append((f"{where}.root_cutout_m", f"expected < radius_m ({rotor['radius_m']}), got {rotor['root_cutout_m']}"))
+        if rotor.get("hinge_offset_m", 0.0) >= rotor["radius_m"]:
+            problems.append((f"{where}.hinge_offset_m", f"expected < radius_m ({rotor['radius_m']})"))
+        if math.hypot(*rotor["thrust_axis_body"]) < 1e-9:
+            problems.append((f"{where}.thrust_axis_body", "expected a non-zero vector"))
+    if not any(rotor["role"] == "lift" for rotor in data["rotors"]):
+        problems.append(("rotors", "expected at least one rotor with role 'lift'"))
+    if sum(rotor["role"] == "antitorque" for rotor in data["rotors"]) > 1:
+        problems.append(("rotors", "expected at most one rotor with role 'antitorque'"))
+    if Path(path).stem != data["name"]:
+        problems.append(("name", f"expected the file stem '{Path(path).stem}', got '{data['name']}'"))
+    _raise(path, problems)
+    return data
+
+
+def load_mission(path: str | Path) -> dict:
+    """Read and validate one mission file."""
+    data = validate(read_yaml(path), "mission", path)
+    problems = []
+    ids = [segment["id"] for segment in data["segments"]]
+    for index, segment in enumerate(data["segments"]):
+        if ids.count(segment["id"]) > 1:
+            problems.append((f"segments[{index}].id", f"expected a unique id, '{segment['id']}' repeats"))
+        for aircraft, speeds in segment["aircraft"].items():
+            if "flight_path_deg" in speeds:
+                derived = math.degrees(math.atan2(speeds["climb_speed_mps"], speeds["forward_speed_mps"]))
+                if abs(derived - speeds["flight_path_deg"]) > 0.5:
+                    problems.append((
+                        f"segments[{index}].aircraft.{aircraft}.flight_path_deg",
+                        f"expected atan2(climb, forward) = {derived:.2f} deg within 0.5 deg, got {speeds['flight_path_deg']}",
+                    ))
+            if speeds["forward_speed_mps"] == 0 and speeds["climb_speed_mps"] != 0:
+                problems.append((f"segments[{index}].aircraft.{aircraft}", "vertical flight without forward speed is not supported"))
+    _raise(path, problems)
+    return data
+
+
+@dataclass(frozen=True)
+class Campaign:
+    """A validated campaign: the config, its aircraft and mission, and the segment list."""
+
+    config: dict
+    aircraft: dict[str, dict]
+    mission: dict
+    segments: list[str]
+
+    def segment(self, segment_id: str) -> dict:
+        return next(s for s in self.mission["segments"] if s["id"] == segment_id)
+
+    def rotor(self, aircraft: str, rotor: str) -> dict:
+        return next(r for r in self.aircraft[aircraft]["rotors"] if r["name"] == rotor)
+
+    def rotor_names(self, aircraft: str) -> list[str]:
+        return [r["name"] for r in self.aircraft[aircraft]["rotors"]]
+
+
+def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", root: str | Path = ".") -> Campaign:
+    """Validate the campaign configuration and every file it names, with cross references."""
+    validate(config, "config", config_file)
+    root = Path(root)
+    config_dir = root / config["campaign"].get("config_dir", "config")
+    problems = []
+    aircraft = {}
+    for index, name in enumerate(config["campaign"]["aircraft"]):
+        path = config_dir / "aircraft" / f"{name}.yaml"
+        if not path.exists():
+            problems.append((f"campaign.aircraft[{index}]", f"expected an aircraft file {path}, none exists"))
+            continue
+        aircraft[name] = load_aircraft(path)
+    mission_path = config_dir / "missions" / f"{config['campaign']['mission']}.yaml"
+    if not mission_path.exists():
+        problems.append(("campaign.mission", f"expected a mission file {mission_path}, none exists"))
+    _raise(config_file, problems)
+    mission = load_mission(mission_path)
+    all_ids = [segment["id"] for segment in mission["segments"]]
+    segments = config["campaign"].get("segments", all_ids)
+    for index, segment_id in enumerate(segments):
+        if segment_id not in all_ids:
+            problems.append((f"campaign.segments[{index}]", f"expected one of the mission's segments {all_ids}, got '{segment_id}'"))
+    for set_name, obs in config["observer_sets"].items():
+        for index, segment_id in enumerate(obs.get("segments", [])):
+            if segment_id not in all_ids:
+                problems.append((f"observer_sets.{set_name}.segments[{index}]", f"expected one of {all_ids}, got '{segment_id}'"))
+    _raise(config_file, problems)
+    for index, segment in enumerate(mission["segments"]):
+        if segment["id"] not in segments:
+            continue
+        for name in aircraft:
+            if name not in segment["aircraft"]:
+                problems.append((f"segments[{index}].aircraft", f"expected speeds for aircraft '{name}' of the campaign"))
+        for name, speeds in segment["aircraft"].items():
+            if name not in aircraft and not (config_dir / "aircraft" / f"{name}.yaml").exists():
+                problems.append((f"segments[{index}].aircraft.{name}", "names an aircraft that does not exist"))
+            rotor_names = [r["name"] for r in aircraft[name]["rotors"]] if name in aircraft else None
+            for rotor in speeds.get("rotor_omega_scale", {}):
+                if rotor_names is not None and rotor not in rotor_names:
+                    problems.append((
+                        f"segments[{index}].aircraft.{name}.rotor_omega_scale.{rotor}",
+                        f"names a rotor that does not exist; {name} has {rotor_names}",
+                    ))
+    _raise(mission_path, problems)
+    return Campaign(config=config, aircraft=aircraft, mission=mission, segments=list(segments))

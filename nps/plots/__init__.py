@@ -1,0 +1,1 @@
+"""Figures: one module per figure family; every function takes arrays or tables and a path."""

@@ -1,0 +1,67 @@
+# Shared definitions: validated campaign, wildcard constraints, config slices and code hashes.
+import hashlib
+from pathlib import Path
+
+from nps.config import load_campaign
+
+CAMPAIGN = load_campaign(config, workflow.configfiles[0] if workflow.configfiles else "config", root=workflow.basedir)
+RESULTS = "results"
+ALL_TARGETS = []
+
+
+wildcard_constraints:
+    aircraft="[a-z][a-z0-9_]*",
+    segment="seg[0-9]+",
+    rotor="[a-z][a-z0-9_]*",
+    obsset="[a-z][a-z0-9_]*",
+    variant="base|bvi",
+
+
+def nps_hash(*modules):
+    """Hash of the named nps modules (e.g. "bet", "plots/disk"): a param that reruns a job when its code changes."""
+    digest = hashlib.sha256()
+    for name in sorted(set(modules) | {"io", "config", "rotor", "frames"}):
+        digest.update((Path(workflow.basedir) / "nps" / f"{name}.py").read_bytes())
+    return digest.hexdigest()[:16]
+
+
+def aircraft_config(wildcards):
+    """The whole validated aircraft configuration."""
+    return CAMPAIGN.aircraft[wildcards.aircraft]
+
+
+def rotor_config(wildcards):
+    """The validated configuration of one rotor."""
+    return CAMPAIGN.rotor(wildcards.aircraft, wildcards.rotor)
+
+
+def segment_speeds(wildcards):
+    """Speeds of one aircraft in one segment (a mission-file slice)."""
+    return CAMPAIGN.segment(wildcards.segment)["aircraft"][wildcards.aircraft]
+
+
+def rotor_names(aircraft):
+    return CAMPAIGN.rotor_names(aircraft)
+
+
+def observer_sets(segment):
+    """Observer sets used in a segment."""
+    return [name for name, obs in config["observer_sets"].items() if segment in obs.get("segments", CAMPAIGN.segments)]
+
+
+def variants():
+    """Load variants radiated: always the trimmed loads, plus BVI loads when the model is on."""
+    return ["base", "bvi"] if config["models"]["bvi"] else ["base"]
+
+
+def campaign_pairs():
+    """(aircraft, segment) pairs of the campaign."""
+    return [(a, s) for a in CAMPAIGN.aircraft for s in CAMPAIGN.segments]
+
+
+def log_path(stage, suffix="{aircraft}/{segment}"):
+    return f"{RESULTS}/logs/{stage}/{suffix}.log"
+
+
+def bench_path(stage, suffix="{aircraft}/{segment}"):
+    return f"{RESULTS}/benchmarks/{stage}/{suffix}.tsv"

@@ -1,0 +1,24 @@
+# Aircraft trim (NDARC's role): per aircraft x segment, thrust targets and rotor states.
+
+
+rule trim:
+    output:
+        f"{RESULTS}/{{aircraft}}/{{segment}}/trim.parquet",
+    params:
+        aircraft=aircraft_config,
+        speeds=segment_speeds,
+        atmosphere=config["atmosphere"],
+        code=nps_hash("trim", "atmosphere"),
+    log:
+        log_path("trim"),
+    benchmark:
+        bench_path("trim")
+    threads: 1
+    resources:
+        mem_mb=500,
+        runtime=5,
+    script:
+        "../scripts/trim.py"
+
+
+ALL_TARGETS.extend(f"{RESULTS}/{a}/{s}/trim.parquet" for a, s in campaign_pairs())
