@@ -7,11 +7,8 @@ import sys
 sys.path.insert(0, workflow.basedir)
 # Scripts run from .snakemake/scripts: make the nps package importable there, keep numba's
 # on-disk cache inside the project (its key must not depend on a temporary script copy).
-os.environ.update(
-    PYTHONPATH=workflow.basedir,
-    NUMBA_CACHE_DIR=os.path.join(workflow.basedir, ".numba_cache"),
-    MPLBACKEND="Agg",
-)
+os.environ.update(PYTHONPATH=workflow.basedir, MPLBACKEND="Agg")
+os.environ.setdefault("NUMBA_CACHE_DIR", os.path.join(workflow.basedir, ".numba_cache"))
 
 
 configfile: "config/config.yaml"

@@ -4,7 +4,8 @@ from pathlib import Path
 
 from nps.config import load_campaign
 
-CAMPAIGN = load_campaign(config, workflow.configfiles[0] if workflow.configfiles else "config", root=workflow.basedir)
+# Configuration paths are relative to the working directory (`snakemake -d DIR` runs a campaign elsewhere).
+CAMPAIGN = load_campaign(config, workflow.configfiles[0] if workflow.configfiles else "config", root=".")
 RESULTS = "results"
 ALL_TARGETS = []
 

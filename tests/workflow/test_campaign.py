@@ -1,0 +1,107 @@
+"""End-to-end: a tiny campaign through the real Snakefile, then rerun scope and no-op rerun.
+
+The workflow runs from the repository's Snakefile with a temporary working directory holding
+a copy of config/ (one aircraft, two segments, coarse resolution), so the numba cache of the
+repository is reused.
+"""
+
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pyarrow.parquet as pq
+import pytest
+import yaml
+
+REPO = Path(__file__).resolve().parents[2]
+
+TINY = {
+    "campaign": {"mission": "demo", "aircraft": ["helicopter"], "segments": ["seg2", "seg3"]},
+    "observer_sets": {
+        "hemisphere": {"kind": "hemisphere", "radius_R": 10.0, "n_elevation": 4, "n_azimuth": 8, "moving": True},
+        "hsi": {"kind": "points_ahead", "radius_R": 10.0, "elevations_deg": [0.0, -26.0], "moving": True, "segments": ["seg2"]},
+    },
+    "resolution": {"n_psi": 72, "n_r": 16, "wake_revolutions": 2, "samples_per_rev": 256},
+    "models": {"bvi": True, "hsi": True, "broadband": True, "absorption": True, "thickness": "dual_compact"},
+    "wake": {"A": 0.5, "B": 1.0, "C": 1.1, "D": 0.85, "core_radius_chords": 0.5, "core_growth": False},
+    "acoustics": {"dual_compact_chord_fractions": [0.13, 0.87], "bvispl_harmonics": [7, 40]},
+    "atmosphere": {"altitude_m": 0.0, "isa_delta_K": 0.0, "relative_humidity_pct": 70.0},
+}
+
+
+def _snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(REPO / ".numba_cache"))
+    command = [sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(workdir), *args]
+    return subprocess.run(command, capture_output=True, text=True, env=env, timeout=1200)
+
+
+@pytest.fixture(scope="module")
+def campaign_dir(tmp_path_factory):
+    workdir = tmp_path_factory.mktemp("campaign")
+    import shutil
+
+    shutil.copytree(REPO / "config", workdir / "config")
+    (workdir / "config" / "config.yaml").write_text(yaml.safe_dump(TINY, sort_keys=False))
+    result = _snakemake(workdir, "-j2", "all")
+    assert result.returncode == 0, result.stderr[-4000:]
+    return workdir
+
+
+def _jobs(dry_run_output: str) -> list[tuple[str, str]]:
+    """(rule, wildcards) of each job listed by a dry run."""
+    jobs = []
+    rule = None
+    for line in dry_run_output.splitlines():
+        match = re.match(r"^(?:localrule|rule) (\w+):", line.strip())
+        if match:
+            rule = match.group(1)
+            jobs.append((rule, ""))
+        elif line.strip().startswith("wildcards:") and jobs:
+            jobs[-1] = (rule, line.strip())
+    return jobs
+
+
+def test_campaign_artifacts_are_finite(campaign_dir):
+    artifacts = sorted((campaign_dir / "results").rglob("*.parquet"))
+    assert artifacts, "no artifacts written"
+    for path in artifacts:
+        table = pq.read_table(path)
+        for name in table.column_names:
+            column = table.column(name).to_numpy()
+            if column.dtype.kind == "f":
+                assert np.isfinite(column).all(), f"{path}:{name}"
+
+
+def test_second_run_does_nothing(campaign_dir):
+    result = _snakemake(campaign_dir, "-n", "all")
+    assert result.returncode == 0, result.stderr[-2000:]
+    assert "Nothing to be done" in result.stdout + result.stderr
+
+
+def test_changing_one_segment_reruns_only_that_segment(campaign_dir):
+    mission = campaign_dir / "config" / "missions" / "demo.yaml"
+    original = mission.read_text()
+    data = yaml.safe_load(original)
+    data["segments"][2]["aircraft"]["helicopter"]["forward_speed_mps"] = 27.0
+    data["segments"][2]["aircraft"]["helicopter"].pop("flight_path_deg")
+    mission.write_text(yaml.safe_dump(data, sort_keys=False))
+    try:
+        result = _snakemake(campaign_dir, "-n", "all")
+    finally:
+        mission.write_text(original)
+    assert result.returncode == 0, result.stderr[-2000:]
+    jobs = [job for job in _jobs(result.stdout + result.stderr) if job[0] != "all"]
+    assert jobs, result.stdout
+    assert all("segment=seg3" in wildcards for _, wildcards in jobs), jobs
+    assert any(rule == "trim" for rule, _ in jobs)
+
+
+def test_lint_reports_only_environment_findings():
+    result = subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(REPO), "--lint"],
+                            capture_output=True, text=True, timeout=300)
+    findings = [line.strip() for line in (result.stdout + result.stderr).splitlines() if line.strip().startswith("* ")]
+    unexpected = [f for f in findings if "conda environment or container" not in f]
+    assert not unexpected, unexpected
