@@ -105,3 +105,17 @@ def test_lint_reports_only_environment_findings():
     findings = [line.strip() for line in (result.stdout + result.stderr).splitlines() if line.strip().startswith("* ")]
     unexpected = [f for f in findings if "conda environment or container" not in f]
     assert not unexpected, unexpected
+
+
+def test_bad_configuration_stops_before_any_job(tmp_path):
+    """A wrong aircraft file stops `snakemake` at once with the validator's message, no traceback."""
+    import shutil
+
+    shutil.copytree(REPO / "config", tmp_path / "config")
+    aircraft = tmp_path / "config" / "aircraft" / "helicopter.yaml"
+    aircraft.write_text(aircraft.read_text().replace("radius_m: 7.62 ", "radius_m: -7.62 "))
+    result = _snakemake(tmp_path, "-n", "all")
+    assert result.returncode != 0
+    assert "config/aircraft/helicopter.yaml: rotors[0].radius_m: expected a number > 0, got -7.62" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert not (tmp_path / "results").exists()

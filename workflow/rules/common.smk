@@ -1,11 +1,17 @@
 # Shared definitions: validated campaign, wildcard constraints, config slices and code hashes.
 import hashlib
+import sys
 from pathlib import Path
 
-from nps.config import load_campaign
+from nps.config import ConfigError, load_campaign
 
 # Configuration paths are relative to the working directory (`snakemake -d DIR` runs a campaign elsewhere).
-CAMPAIGN = load_campaign(config, workflow.configfiles[0] if workflow.configfiles else "config", root=".")
+# A configuration error stops the run before any job with the validator's message alone.
+try:
+    CAMPAIGN = load_campaign(config, workflow.configfiles[0] if workflow.configfiles else "config", root=".")
+except ConfigError as error:
+    sys.stderr.write(f"NPS configuration error: {error}\n")
+    raise SystemExit(1)
 RESULTS = "results"
 ALL_TARGETS = []
 
