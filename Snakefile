@@ -27,3 +27,6 @@ rule all:
 
 
 include: "workflow/rules/trim.smk"
+include: "workflow/rules/loads.smk"
+include: "workflow/rules/wake.smk"
+include: "workflow/rules/bvi.smk"

@@ -193,6 +193,12 @@ def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", 
     for index, segment_id in enumerate(segments):
         if segment_id not in all_ids:
             problems.append((f"campaign.segments[{index}]", f"expected one of the mission's segments {all_ids}, got '{segment_id}'"))
+    segment_lists = {f"figures.{key}": value for key, value in config["figures"].items()}
+    segment_lists["models.bvi_segments"] = config["models"].get("bvi_segments", [])
+    for where, listed in segment_lists.items():
+        for index, segment_id in enumerate(listed):
+            if segment_id not in all_ids:
+                problems.append((f"{where}[{index}]", f"expected one of {all_ids}, got '{segment_id}'"))
     for set_name, obs in config["observer_sets"].items():
         for index, segment_id in enumerate(obs.get("segments", [])):
             if segment_id not in all_ids:

@@ -56,9 +56,21 @@ def observer_sets(segment):
     return [name for name, obs in config["observer_sets"].items() if segment in obs.get("segments", CAMPAIGN.segments)]
 
 
-def variants():
-    """Load variants radiated: always the trimmed loads, plus BVI loads when the model is on."""
-    return ["base", "bvi"] if config["models"]["bvi"] else ["base"]
+def bvi_segments():
+    """Segments where the wake and BVI loads are computed (all when not listed)."""
+    if not config["models"]["bvi"]:
+        return []
+    return [s for s in CAMPAIGN.segments if s in config["models"].get("bvi_segments", CAMPAIGN.segments)]
+
+
+def variants(segment):
+    """Load variants radiated in a segment: the trimmed loads, plus BVI loads where BVI is on."""
+    return ["base", "bvi"] if segment in bvi_segments() else ["base"]
+
+
+def figure_segments(kind):
+    """Campaign segments listed for a figure family in config["figures"]."""
+    return [s for s in CAMPAIGN.segments if s in config["figures"][f"{kind}_segments"]]
 
 
 def campaign_pairs():

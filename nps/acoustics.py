@@ -1,0 +1,659 @@
+"""Compact Farassat 1A: pressure time histories of compact line sources at any observers.
+
+Model (docs/models/acoustics.md). Every source node is a compact point that moves along a
+known path y(τ) in the ground frame G (medium at rest) and carries
+
+* a force ``f`` (N) exerted *on the fluid* (the loading dipole, or a dual-compact thickness
+  line), radiated with Farassat's formulation 1A reduced to a point (thesis eq. 2.4, read with
+  the denominators of the published formulation; see below), and optionally
+* a volume ``V`` (m³), a compact thickness monopole: p_T = ρ0 V/(4π) ∂²/∂t² [1/(r|1−M_r|)]_ret,
+  the compact limit of the thesis' eq. 2.3 (the model ANOPP2 and AcousticAnalogies.jl use).
+
+Compact F1A loading, with r = x(t) − y(τ), r = |r| = c0 (t − τ), M = v/c0, Ṁ = a/c0 and the
+subscripts r, M meaning dot products with r̂ and M::
+
+    4π p_L = ḟ_r / (c0 r (1−M_r)²) + (f_r − f_M) / (r² (1−M_r)²)
+             + f_r (r Ṁ_r + c0 M_r − c0 M²) / (c0 r² (1−M_r)³)
+
+(the thesis prints r|1−M_r|² garbled in the first two denominators; the consistent reading is
+r(1−M_r)² and r²(1−M_r)²). All near- and far-field terms are kept.
+
+Algorithm (source-time dominant): for each observer, node and source time τ_j the reception
+time t_j = τ_j + r/c0 comes in closed form (the observer moves with constant velocity, so
+|x0 + v_o t − y(τ)| = c0 (t − τ) is a quadratic in t − τ), the contribution p_j is evaluated
+there, and the non-uniform samples (t_j, p_j) are interpolated onto the uniform observer grid
+with 4-point (cubic) Lagrange interpolation on the non-uniform nodes, then summed over nodes.
+Observer motion enters only through the reception point x(t_j): F1A gives p(x, t) at any fixed
+point, and the receiver is at x(t_j) when it hears τ_j.
+
+Two drivers share the kernel:
+
+* :func:`radiate_arrays` (``periodic=False``): sources given over a finite source-time span,
+  any observers; the requested window must be covered (error names the observer).
+* periodic sources (:class:`CompactSources` with ``period_s``): one period of blade 0 of a
+  rotor in steady flight, observers moving with the aircraft. The received signal is then
+  exactly periodic; it is interpolated onto ``M`` points per period, the B identical blades are
+  added in the Fourier domain (harmonics that are multiples of B, times B: exact for identical
+  blades), and the Fourier series is evaluated on the common grid (band-limited resampling, exact
+  for rotors of any speed).
+
+Units SI; positions, velocities and forces in G. Pressure in Pa.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numba as nb
+import numpy as np
+import pandas as pd
+
+C0_MPS = 340.294
+RHO0_KG_M3 = 1.225
+THICKNESS = "thickness"
+LOADING = "loading"
+TOTAL = "total"
+
+
+class AcousticsError(ValueError):
+    """Bad acoustic input (names the field or observer and what was expected)."""
+
+
+@dataclass(frozen=True)
+class CompactSources:
+    """Compact source nodes sampled at uniform source times (SI, ground frame G).
+
+    Arrays have shape (n_node, n_tau, 3) for vectors: ``position_m``, ``velocity_mps``,
+    ``acceleration_mps2``, ``jerk_mps3`` (d³y/dτ³, needed only by monopole nodes),
+    ``force_N`` (force on the fluid, N) and ``force_rate_N_s`` (dF/dτ). ``volume_m3`` (n_node,)
+    is the compact-monopole volume (0 for a pure dipole node). ``groups`` names the output
+    groups; ``dipole_group`` and ``monopole_group`` (n_node,) index into it (−1: none).
+    ``time_s`` (n_tau,) is uniform.
+
+    Periodic sources: ``period_s`` is set, the samples are one period (τ_j = time_s[0] + j·T/n),
+    the motion is periodic in a frame translating with ``frame_velocity_mps`` and ``copies``
+    identical copies shifted by T/copies in time are implied (the other blades).
+    """
+
+    time_s: np.ndarray
+    position_m: np.ndarray
+    velocity_mps: np.ndarray
+    acceleration_mps2: np.ndarray
+    jerk_mps3: np.ndarray
+    force_N: np.ndarray
+    force_rate_N_s: np.ndarray
+    volume_m3: np.ndarray
+    groups: tuple[str, ...]
+    dipole_group: np.ndarray
+    monopole_group: np.ndarray
+    period_s: float | None = None
+    frame_velocity_mps: np.ndarray | None = None
+    copies: int = 1
+
+    def __post_init__(self):
+        n_node, n_tau = self.position_m.shape[:2]
+        for name in ("position_m", "velocity_mps", "acceleration_mps2", "jerk_mps3", "force_N", "force_rate_N_s"):
+            value = getattr(self, name)
+            if value.shape != (n_node, n_tau, 3):
+                raise AcousticsError(f"sources: '{name}' has shape {value.shape}, expected {(n_node, n_tau, 3)}")
+            if not np.isfinite(value).all():
+                raise AcousticsError(f"sources: '{name}' has non-finite values")
+        if self.time_s.shape != (n_tau,) or n_tau < 4:
+            raise AcousticsError(f"sources: need at least 4 source times matching the arrays, got {self.time_s.shape}")
+        if self.volume_m3.shape != (n_node,) or not np.isfinite(self.volume_m3).all():
+            raise AcousticsError("sources: 'volume_m3' must be finite with one value per node")
+        if self.period_s is not None and (self.frame_velocity_mps is None or self.copies < 1):
+            raise AcousticsError("periodic sources need frame_velocity_mps and copies >= 1")
+
+
+@dataclass(frozen=True)
+class Observers:
+    """Observers: position at t = 0 (m, G) and constant velocity (m/s, G), shape (n, 3)."""
+
+    position_m: np.ndarray
+    velocity_mps: np.ndarray
+
+    def __post_init__(self):
+        if self.position_m.ndim != 2 or self.position_m.shape[1] != 3 or self.velocity_mps.shape != self.position_m.shape:
+            raise AcousticsError(f"observers: positions {self.position_m.shape} and velocities {self.velocity_mps.shape} must be (n, 3)")
+        if not (np.isfinite(self.position_m).all() and np.isfinite(self.velocity_mps).all()):
+            raise AcousticsError("observers: non-finite position or velocity")
+
+
+@dataclass(frozen=True)
+class TimeGrid:
+    """Uniform observer times t_k = t_start_s + k·duration_s/n_samples, k = 0…n_samples−1."""
+
+    t_start_s: float
+    duration_s: float
+    n_samples: int
+
+    @property
+    def dt_s(self) -> float:
+        return self.duration_s / self.n_samples
+
+    @property
+    def times_s(self) -> np.ndarray:
+        return self.t_start_s + np.arange(self.n_samples) * self.dt_s
+
+
+# ----------------------------------------------------------------------------------------------
+# numba kernel
+# ----------------------------------------------------------------------------------------------
+@nb.njit(cache=True, inline="always", fastmath=True)
+def _reception(y0, y1, y2, xo0, xo1, xo2, vo0, vo1, vo2, tau, c0, inv_a):
+    """Closed-form reception for an observer x(t) = xo + vo t and an emission (y, τ).
+
+    With d = x(τ) − y and s = t − τ: (c0² − v_o²) s² − 2 (d·v_o) s − |d|² = 0, positive root;
+    ``inv_a`` = 1/(c0² − v_o²). Returns (t, s, r = x(t) − y components).
+    """
+    d0 = xo0 + vo0 * tau - y0
+    d1 = xo1 + vo1 * tau - y1
+    d2 = xo2 + vo2 * tau - y2
+    dv = d0 * vo0 + d1 * vo1 + d2 * vo2
+    dd = d0 * d0 + d1 * d1 + d2 * d2
+    s = (dv + np.sqrt(dv * dv + dd / inv_a)) * inv_a
+    return tau + s, s, d0 + vo0 * s, d1 + vo1 * s, d2 + vo2 * s
+
+
+@nb.njit(cache=True, inline="always", fastmath=True)
+def _f1a_point(s, r0, r1, r2, pos, vel, acc, jerk, frc, frd, vol, i, j, c0, rho0):
+    """Compact F1A dipole and monopole pressure (Pa) of node i at source step j.
+
+    (r0, r1, r2) = x(t) − y(τ), s = t − τ = r/c0. Returns 4π × pressure: the caller scales.
+    Loading: formulation 1A (module docstring), written as
+    W²/r · [ḟ_r/c0 + (f_r − f_M)/r + f_r W (Ṁ_r/c0 + (M_r − M²)/r)], W = 1/(1 − M_r).
+    Monopole: ρ0 V · W d/dτ[W d/dτ(W/r)], derivatives at a fixed receiver point.
+    """
+    r = c0 * s
+    inv_r = 1.0 / r
+    n0 = r0 * inv_r
+    n1 = r1 * inv_r
+    n2 = r2 * inv_r
+    v0 = vel[i, j, 0]
+    v1 = vel[i, j, 1]
+    v2 = vel[i, j, 2]
+    a0 = acc[i, j, 0]
+    a1 = acc[i, j, 1]
+    a2 = acc[i, j, 2]
+    inv_c = 1.0 / c0
+    mr = (v0 * n0 + v1 * n1 + v2 * n2) * inv_c
+    m2 = (v0 * v0 + v1 * v1 + v2 * v2) * inv_c * inv_c
+    mdot_r = (a0 * n0 + a1 * n1 + a2 * n2) * inv_c
+    w = 1.0 / (1.0 - mr)
+    f0 = frc[i, j, 0]
+    f1 = frc[i, j, 1]
+    f2 = frc[i, j, 2]
+    fr = f0 * n0 + f1 * n1 + f2 * n2
+    fm = (f0 * v0 + f1 * v1 + f2 * v2) * inv_c
+    fdr = frd[i, j, 0] * n0 + frd[i, j, 1] * n1 + frd[i, j, 2] * n2
+    w2 = w * w
+    p_d = w2 * inv_r * (fdr * inv_c + (fr - fm) * inv_r + fr * w * (mdot_r * inv_c + (mr - m2) * inv_r))
+    p_m = 0.0
+    if vol != 0.0:
+        # τ-derivatives at a fixed receiver point: R = x − y, Ṙ = −v, R̈ = −a, R⃛ = −jerk.
+        rdot = -mr * c0
+        # d r̂/dτ = (Ṙ − ṙ r̂)/r
+        h0 = (-v0 - rdot * n0) * inv_r
+        h1 = (-v1 - rdot * n1) * inv_r
+        h2 = (-v2 - rdot * n2) * inv_r
+        rddot = (c0 * c0 * m2 - (r0 * a0 + r1 * a1 + r2 * a2) - rdot * rdot) * inv_r
+        # d²r̂/dτ² = (R̈ − r̈ r̂ − 2 ṙ dr̂/dτ)/r
+        g0 = (-a0 - rddot * n0 - 2.0 * rdot * h0) * inv_r
+        g1 = (-a1 - rddot * n1 - 2.0 * rdot * h1) * inv_r
+        g2 = (-a2 - rddot * n2 - 2.0 * rdot * h2) * inv_r
+        mr_d = (a0 * n0 + a1 * n1 + a2 * n2 + v0 * h0 + v1 * h1 + v2 * h2) * inv_c
+        mr_dd = (
+            jerk[i, j, 0] * n0 + jerk[i, j, 1] * n1 + jerk[i, j, 2] * n2
+            + 2.0 * (a0 * h0 + a1 * h1 + a2 * h2)
+            + v0 * g0 + v1 * g1 + v2 * g2
+        ) * inv_c
+        wd = w2 * mr_d
+        gq = w * inv_r
+        rate = -rdot * inv_r + w * mr_d
+        gd = gq * rate
+        gdd = gd * rate + gq * (-rddot * inv_r + rdot * rdot * inv_r * inv_r + wd * mr_d + w * mr_dd)
+        p_m = rho0 * vol * w * (wd * gd + w * gdd)
+    return p_d, p_m
+
+
+@nb.njit(cache=True)
+def _accumulate(tb, pa, pb, lo, hi, t_first, dt, count, out_a, out_b, idx0, modulo, has_a, has_b):
+    """Add cubic-Lagrange interpolants of (tb, pa) and (tb, pb), samples lo…hi−1, to out_a/out_b.
+
+    Targets t_q = t_first + q·dt, q < count, must lie in [tb[lo], tb[hi−1]]; output index
+    idx0 + q, wrapped modulo ``modulo`` when > 0. Each target between tb[j] and tb[j+1] uses the
+    four nodes j−1…j+2 (shifted inward at the ends); the node denominators are computed once per
+    source interval.
+    """
+    q = 0
+    m = idx0
+    if modulo > 0:
+        m = idx0 % modulo
+    t = t_first
+    for j in range(lo, hi - 1):
+        if q >= count:
+            break
+        t_next = tb[j + 1]
+        if t >= t_next and j < hi - 2:
+            continue
+        k = min(max(j - 1, lo), hi - 4)
+        x0 = tb[k]
+        x1 = tb[k + 1]
+        x2 = tb[k + 2]
+        x3 = tb[k + 3]
+        i0 = 1.0 / ((x0 - x1) * (x0 - x2) * (x0 - x3))
+        i1 = 1.0 / ((x1 - x0) * (x1 - x2) * (x1 - x3))
+        i2 = 1.0 / ((x2 - x0) * (x2 - x1) * (x2 - x3))
+        i3 = 1.0 / ((x3 - x0) * (x3 - x1) * (x3 - x2))
+        a0 = pa[k] * i0
+        a1 = pa[k + 1] * i1
+        a2 = pa[k + 2] * i2
+        a3 = pa[k + 3] * i3
+        b0 = pb[k] * i0
+        b1 = pb[k + 1] * i1
+        b2 = pb[k + 2] * i2
+        b3 = pb[k + 3] * i3
+        last = j == hi - 2
+        while q < count and (t < t_next or last):
+            d0 = t - x0
+            d1 = t - x1
+            d2 = t - x2
+            d3 = t - x3
+            w0 = d1 * d2 * d3
+            w1 = d0 * d2 * d3
+            w2 = d0 * d1 * d3
+            w3 = d0 * d1 * d2
+            if has_a:
+                out_a[m] += w0 * a0 + w1 * a1 + w2 * a2 + w3 * a3
+            if has_b:
+                out_b[m] += w0 * b0 + w1 * b1 + w2 * b2 + w3 * b3
+            q += 1
+            m += 1
+            if modulo > 0 and m == modulo:
+                m = 0
+            t = t_first + q * dt
+
+
+@nb.njit(cache=True, parallel=True)
+def _coverage(pos, tau, xo, vo, c0):
+    """Per observer: [latest first reception, earliest last reception] over all nodes (s)."""
+    n_obs = xo.shape[0]
+    n_node = pos.shape[0]
+    last = pos.shape[1] - 1
+    out = np.empty((n_obs, 2))
+    for o in nb.prange(n_obs):
+        inv_a = 1.0 / (c0 * c0 - (vo[o, 0] ** 2 + vo[o, 1] ** 2 + vo[o, 2] ** 2))
+        lo = -np.inf
+        hi = np.inf
+        for i in range(n_node):
+            t0 = _reception(pos[i, 0, 0], pos[i, 0, 1], pos[i, 0, 2], xo[o, 0], xo[o, 1], xo[o, 2], vo[o, 0], vo[o, 1], vo[o, 2], tau[0], c0, inv_a)[0]
+            t1 = _reception(pos[i, last, 0], pos[i, last, 1], pos[i, last, 2], xo[o, 0], xo[o, 1], xo[o, 2], vo[o, 0], vo[o, 1], vo[o, 2], tau[last], c0, inv_a)[0]
+            lo = max(lo, t0)
+            hi = min(hi, t1)
+        out[o, 0] = lo
+        out[o, 1] = hi
+    return out
+
+
+@nb.njit(cache=True, parallel=True, fastmath=True)
+def _radiate_kernel(pos, vel, acc, jerk, frc, frd, vol, gdip, gmono, n_groups, tau, xo, vo, c0, rho0,
+                    t_first, dt, n_out, period):
+    """Pressure (n_obs, n_groups, n_out) of all nodes at every observer.
+
+    period <= 0: direct mode, targets t_first + k·dt. period > 0: the samples are one period
+    (τ_j = tau[0] + j·period/n_tau) and the output is that periodic signal at
+    t_first + k·dt (mod period), dt = period/n_out.
+    """
+    n_obs = xo.shape[0]
+    n_node, n_tau = pos.shape[0], pos.shape[1]
+    out = np.zeros((n_obs, n_groups, n_out))
+    pad = 2
+    n_ext = n_tau + 2 * pad + 1
+    t_end = t_first + (n_out - 1) * dt
+    for o in nb.prange(n_obs):
+        tb = np.empty(n_ext)
+        pa = np.empty(n_ext)
+        pb = np.empty(n_ext)
+        xo0, xo1, xo2 = xo[o, 0], xo[o, 1], xo[o, 2]
+        vo0, vo1, vo2 = vo[o, 0], vo[o, 1], vo[o, 2]
+        inv_a = 1.0 / (c0 * c0 - (vo0 * vo0 + vo1 * vo1 + vo2 * vo2))
+        for i in range(n_node):
+            has_a = gdip[i] >= 0
+            has_b = gmono[i] >= 0 and vol[i] != 0.0
+            if not has_a and not has_b:
+                continue
+            if period <= 0.0:
+                # reception times first (cheap), then F1A only where the window needs it
+                for j in range(n_tau):
+                    tb[j] = _reception(pos[i, j, 0], pos[i, j, 1], pos[i, j, 2], xo0, xo1, xo2, vo0, vo1, vo2, tau[j], c0, inv_a)[0]
+                lo = 0
+                while lo < n_tau - 1 and tb[lo + 1] <= t_first:
+                    lo += 1
+                hi = n_tau
+                while hi > lo + 1 and tb[hi - 2] >= t_end:
+                    hi -= 1
+                lo = max(lo - pad, 0)
+                hi = min(hi + pad, n_tau)
+                if hi - lo < 4:
+                    lo = max(0, min(lo, n_tau - 4))
+                    hi = lo + 4
+                for j in range(lo, hi):
+                    t, sj, r0, r1, r2 = _reception(pos[i, j, 0], pos[i, j, 1], pos[i, j, 2], xo0, xo1, xo2, vo0, vo1, vo2, tau[j], c0, inv_a)
+                    p_d, p_m = _f1a_point(sj, r0, r1, r2, pos, vel, acc, jerk, frc, frd, vol[i], i, j, c0, rho0)
+                    pa[j] = p_d
+                    pb[j] = p_m
+                _accumulate(tb, pa, pb, lo, hi, t_first, dt, n_out,
+                            out[o, max(gdip[i], 0)], out[o, max(gmono[i], 0)], 0, 0, has_a, has_b)
+            else:
+                dtau = period / n_tau
+                for j in range(n_tau):
+                    t, sj, r0, r1, r2 = _reception(pos[i, j, 0], pos[i, j, 1], pos[i, j, 2], xo0, xo1, xo2, vo0, vo1, vo2, tau[0] + j * dtau, c0, inv_a)
+                    p_d, p_m = _f1a_point(sj, r0, r1, r2, pos, vel, acc, jerk, frc, frd, vol[i], i, j, c0, rho0)
+                    tb[j + pad] = t
+                    pa[j + pad] = p_d
+                    pb[j + pad] = p_m
+                # periodic extension: pad samples before and pad + 1 after
+                for q in range(pad):
+                    tb[q] = tb[n_tau + q] - period
+                    pa[q] = pa[n_tau + q]
+                    pb[q] = pb[n_tau + q]
+                for q in range(pad + 1):
+                    tb[n_tau + pad + q] = tb[pad + q] + period
+                    pa[n_tau + pad + q] = pa[pad + q]
+                    pb[n_tau + pad + q] = pb[pad + q]
+                m0 = int(np.ceil((tb[pad] - t_first) / dt))
+                _accumulate(tb, pa, pb, 0, n_ext, t_first + m0 * dt, dt, n_out,
+                            out[o, max(gdip[i], 0)], out[o, max(gmono[i], 0)], m0 % n_out + n_out, n_out, has_a, has_b)
+    return out * (1.0 / (4.0 * np.pi))
+
+
+# ----------------------------------------------------------------------------------------------
+# drivers
+# ----------------------------------------------------------------------------------------------
+def _check_speeds(sources: CompactSources, observers: Observers, c0: float) -> None:
+    speed = np.linalg.norm(sources.velocity_mps, axis=-1).max(axis=1)
+    if (speed >= c0).any():
+        node = int(np.argmax(speed))
+        raise AcousticsError(f"sources: node {node} reaches Mach {speed[node] / c0:.3f}; compact F1A needs subsonic sources")
+    v_obs = np.linalg.norm(observers.velocity_mps, axis=1)
+    if (v_obs >= c0).any():
+        raise AcousticsError(f"observers: observer {int(np.argmax(v_obs))} moves at or above c0")
+
+
+def _kernel_args(sources: CompactSources):
+    return (
+        np.ascontiguousarray(sources.position_m, dtype=float),
+        np.ascontiguousarray(sources.velocity_mps, dtype=float),
+        np.ascontiguousarray(sources.acceleration_mps2, dtype=float),
+        np.ascontiguousarray(sources.jerk_mps3, dtype=float),
+        np.ascontiguousarray(sources.force_N, dtype=float),
+        np.ascontiguousarray(sources.force_rate_N_s, dtype=float),
+        np.ascontiguousarray(sources.volume_m3, dtype=float),
+        np.ascontiguousarray(sources.dipole_group, dtype=np.int64),
+        np.ascontiguousarray(sources.monopole_group, dtype=np.int64),
+        len(sources.groups),
+    )
+
+
+def covered_interval(sources: CompactSources, observers: Observers, c0_mps: float = C0_MPS) -> np.ndarray:
+    """(n_obs, 2): observer-time interval (s) that every source node covers at each observer."""
+    pos = np.ascontiguousarray(sources.position_m, dtype=float)
+    return _coverage(pos, np.asarray(sources.time_s, float), observers.position_m.astype(float),
+                     observers.velocity_mps.astype(float), float(c0_mps))
+
+
+def radiate_arrays(sources: CompactSources, observers: Observers, grid: TimeGrid, *,
+                   c0_mps: float = C0_MPS, rho0_kg_m3: float = RHO0_KG_M3) -> np.ndarray:
+    """Acoustic pressure (Pa), shape (n_obs, n_groups, n_samples), groups as ``sources.groups``.
+
+    Non-periodic sources: every observer's window must be covered by the retarded source
+    times, else :class:`AcousticsError` names the first observer and the uncovered interval.
+    Periodic sources (``period_s`` set): observers must move with ``frame_velocity_mps``; the
+    result is the sum over the ``copies`` blades, resampled onto ``grid`` (see module doc).
+    """
+    if grid.n_samples < 1 or not grid.duration_s > 0:
+        raise AcousticsError(f"time grid: need n_samples >= 1 and duration > 0, got {grid}")
+    _check_speeds(sources, observers, c0_mps)
+    xo = np.ascontiguousarray(observers.position_m, dtype=float)
+    vo = np.ascontiguousarray(observers.velocity_mps, dtype=float)
+    args = _kernel_args(sources)
+    tau = np.ascontiguousarray(sources.time_s, dtype=float)
+    if sources.period_s is None:
+        dtau = np.diff(tau)
+        if not np.allclose(dtau, dtau[0], rtol=1e-9, atol=0.0) or dtau[0] <= 0:
+            raise AcousticsError("sources: source times must be uniform and increasing")
+        cover = covered_interval(sources, observers, c0_mps)
+        t_last = grid.t_start_s + (grid.n_samples - 1) * grid.dt_s
+        bad = np.nonzero((cover[:, 0] > grid.t_start_s + 1e-12 * abs(grid.t_start_s)) | (cover[:, 1] < t_last))[0]
+        if bad.size:
+            o = int(bad[0])
+            raise AcousticsError(
+                f"observer {o}: the sources cover observer times [{cover[o, 0]:.6g}, {cover[o, 1]:.6g}] s but the "
+                f"window needs [{grid.t_start_s:.6g}, {t_last:.6g}] s ({bad.size} observer(s) uncovered); extend the source times")
+        return _radiate_kernel(*args, tau, xo, vo, float(c0_mps), float(rho0_kg_m3),
+                               float(grid.t_start_s), float(grid.dt_s), int(grid.n_samples), 0.0)
+    if not np.allclose(vo, sources.frame_velocity_mps[None, :], rtol=0.0, atol=1e-9 * c0_mps):
+        raise AcousticsError("observers: periodic (one-blade, one-period) sources need observers moving with the "
+                             f"aircraft velocity {sources.frame_velocity_mps.tolist()} m/s; use non-periodic sources")
+    period = float(sources.period_s)
+    n_per = periodic_samples(period, grid)
+    one = _radiate_kernel(*args, tau, xo, vo, float(c0_mps), float(rho0_kg_m3),
+                          float(grid.t_start_s), period / n_per, n_per, period)
+    return fourier_resample(one, period, grid, copies=sources.copies)
+
+
+def periodic_samples(period_s: float, grid: TimeGrid) -> int:
+    """Samples per source period: even, at least the grid's density (and at least 8)."""
+    density = grid.n_samples / grid.duration_s
+    return max(8, 2 * int(np.ceil(0.5 * period_s * density - 1e-9)))
+
+
+def fourier_resample(one_period: np.ndarray, period_s: float, grid: TimeGrid, copies: int = 1) -> np.ndarray:
+    """Evaluate a periodic signal, sampled at grid.t_start_s + m·T/M (last axis), on ``grid``.
+
+    The sum of ``copies`` identical signals shifted by T/copies keeps only harmonics that are
+    multiples of ``copies``, times ``copies`` (exact). Band-limited (trigonometric) evaluation.
+    """
+    m_samples = one_period.shape[-1]
+    spec = np.fft.rfft(one_period, axis=-1) / m_samples
+    n = np.arange(spec.shape[-1])
+    weight = np.where((n == 0) | ((m_samples % 2 == 0) & (n == m_samples // 2)), 1.0, 2.0)
+    keep = n % copies == 0
+    spec = spec[..., keep] * (weight[keep] * copies)
+    n = n[keep]
+    phase = 2.0 * np.pi * np.outer(n, grid.times_s - grid.t_start_s) / period_s
+    flat = spec.reshape(-1, n.size)
+    out = flat.real @ np.cos(phase) - flat.imag @ np.sin(phase)
+    return out.reshape(one_period.shape[:-1] + (grid.n_samples,))
+
+
+# ----------------------------------------------------------------------------------------------
+# long-format tables (CLI and Python API)
+# ----------------------------------------------------------------------------------------------
+SOURCE_COLUMNS = ("node", "time_s", "x_m", "y_m", "z_m", "fx_N", "fy_N", "fz_N")
+OBSERVER_COLUMNS = ("observer", "x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps")
+
+
+def fd_weights(offsets: np.ndarray, order: int) -> np.ndarray:
+    """Finite-difference weights (unit step) of the ``order``-th derivative at 0 on ``offsets``."""
+    offsets = np.asarray(offsets, dtype=float)
+    k = np.arange(offsets.size)
+    vander = offsets[None, :] ** k[:, None]
+    rhs = np.zeros(offsets.size)
+    rhs[order] = float(np.prod(np.arange(1, order + 1)))
+    return np.linalg.solve(vander, rhs)
+
+
+def time_derivative(values: np.ndarray, dt: float, axis: int = 1, points: int = 7) -> np.ndarray:
+    """d/dτ of samples on a uniform grid: ``points``-point (6th order) Lagrange differences.
+
+    Central stencils inside, one-sided stencils of the same width near the ends.
+    """
+    values = np.moveaxis(np.asarray(values, dtype=float), axis, 0)
+    n = values.shape[0]
+    if n < points:
+        raise AcousticsError(f"sources: need at least {points} source times for derivatives, got {n}")
+    half = points // 2
+    out = np.empty_like(values)
+    for start_shift in range(points):
+        # rows whose stencil starts ``start_shift`` before them
+        if start_shift == half:
+            rows = np.arange(half, n - half)
+        elif start_shift < half:
+            rows = np.array([start_shift])
+        else:
+            rows = np.array([n - points + start_shift])
+        w = fd_weights(np.arange(points) - start_shift, 1)
+        acc = np.zeros((rows.size,) + values.shape[1:])
+        for q in range(points):
+            acc += w[q] * values[rows - start_shift + q]
+        out[rows] = acc / dt
+    return np.moveaxis(out, 0, axis)
+
+
+def _require(df: pd.DataFrame, columns, what: str) -> None:
+    missing = [c for c in columns if c not in df.columns]
+    if missing:
+        raise AcousticsError(f"{what}: missing column(s) {missing}; has {list(df.columns)}")
+    for c in df.columns:
+        if pd.api.types.is_float_dtype(df[c]) and not np.isfinite(df[c].to_numpy()).all():
+            bad = int((~np.isfinite(df[c].to_numpy())).sum())
+            raise AcousticsError(f"{what}: column '{c}' has {bad} NaN/inf value(s)")
+
+
+def sources_from_table(table: pd.DataFrame, what: str = "sources") -> CompactSources:
+    """Long-format source table (module CLI format) → :class:`CompactSources`.
+
+    Velocities from ``vx_mps…`` when present, else 6th-order differences of the positions;
+    accelerations, jerks and force rates by 6th-order differences in source time. The dipole
+    part of a node goes to its ``group`` (default "loading"), its monopole part (``volume_m3``)
+    to "thickness".
+    """
+    _require(table, SOURCE_COLUMNS, what)
+    table = table.sort_values(["node", "time_s"], kind="stable")
+    nodes = table["node"].unique()
+    n_node = nodes.size
+    counts = table.groupby("node", sort=True).size()
+    if (counts != counts.iloc[0]).any():
+        raise AcousticsError(f"{what}: every node needs the same source times; counts differ {counts.to_dict()}")
+    n_tau = int(counts.iloc[0])
+    time = table["time_s"].to_numpy(float).reshape(n_node, n_tau)
+    if not np.allclose(time, time[0][None, :], rtol=0, atol=1e-12 * max(1.0, np.abs(time).max())):
+        raise AcousticsError(f"{what}: 'time_s' must be the same for all nodes")
+    tau = time[0]
+    if n_tau < 7:
+        raise AcousticsError(f"{what}: need at least 7 source times per node, got {n_tau}")
+    step = np.diff(tau)
+    if step[0] <= 0 or not np.allclose(step, step[0], rtol=1e-6, atol=0):
+        raise AcousticsError(f"{what}: 'time_s' must be uniform and increasing (steps {step.min():.6g}…{step.max():.6g} s)")
+    dt = float(step[0])
+
+    def vec(cols):
+        return np.stack([table[c].to_numpy(float).reshape(n_node, n_tau) for c in cols], axis=-1)
+
+    pos = vec(("x_m", "y_m", "z_m"))
+    vel_cols = ("vx_mps", "vy_mps", "vz_mps")
+    if all(c in table.columns for c in vel_cols):
+        vel = vec(vel_cols)
+    elif any(c in table.columns for c in vel_cols):
+        raise AcousticsError(f"{what}: give all of {list(vel_cols)} or none")
+    else:
+        vel = time_derivative(pos, dt)
+    acc = time_derivative(vel, dt)
+    jerk = time_derivative(acc, dt)
+    force = vec(("fx_N", "fy_N", "fz_N"))
+    if "volume_m3" in table.columns:
+        volume = table["volume_m3"].to_numpy(float).reshape(n_node, n_tau)
+        if not np.allclose(volume, volume[:, :1]):
+            raise AcousticsError(f"{what}: 'volume_m3' must be constant in time for each node")
+        volume = volume[:, 0]
+    else:
+        volume = np.zeros(n_node)
+    names = table["group"].astype(str).to_numpy().reshape(n_node, n_tau)[:, 0] if "group" in table.columns else np.full(n_node, LOADING)
+    groups = list(dict.fromkeys(names.tolist()))
+    if (volume != 0).any() and THICKNESS not in groups:
+        groups.append(THICKNESS)
+    if TOTAL in groups:
+        raise AcousticsError(f"{what}: group name '{TOTAL}' is reserved")
+    dip = np.array([groups.index(g) for g in names], dtype=np.int64)
+    dip[np.all(force == 0.0, axis=(1, 2))] = -1
+    mono = np.where(volume != 0, groups.index(THICKNESS) if THICKNESS in groups else -1, -1).astype(np.int64)
+    return CompactSources(tau, pos, vel, acc, jerk, force, time_derivative(force, dt), volume, tuple(groups), dip, mono)
+
+
+def observers_from_table(table: pd.DataFrame, what: str = "observers") -> tuple[np.ndarray, Observers]:
+    """Observer table → (observer ids, :class:`Observers`)."""
+    _require(table, OBSERVER_COLUMNS, what)
+    ids = table["observer"].to_numpy()
+    if len(np.unique(ids)) != len(ids):
+        raise AcousticsError(f"{what}: duplicate observer ids")
+    return ids, Observers(table[["x_m", "y_m", "z_m"]].to_numpy(float), table[["vx_mps", "vy_mps", "vz_mps"]].to_numpy(float))
+
+
+def signals_table(ids: np.ndarray, groups, pressure: np.ndarray, grid: TimeGrid, total: bool = True) -> pd.DataFrame:
+    """Long table ``observer, group, time_s, p_Pa`` from (n_obs, n_groups, n_samples) pressures."""
+    groups = list(groups)
+    if total:
+        pressure = np.concatenate([pressure, pressure.sum(axis=1, keepdims=True)], axis=1)
+        groups = groups + [TOTAL]
+    n_obs, n_grp, n_t = pressure.shape
+    return pd.DataFrame({
+        "observer": np.repeat(np.asarray(ids, dtype=np.int32), n_grp * n_t),
+        "group": np.tile(np.repeat(np.array(groups, dtype=object), n_t), n_obs),
+        "time_s": np.tile(grid.times_s, n_obs * n_grp),
+        "p_Pa": pressure.reshape(-1),
+    })
+
+
+def radiate(sources: pd.DataFrame, observers: pd.DataFrame, t_start_s: float, duration_s: float, n_samples: int,
+            c0_mps: float = C0_MPS, rho0_kg_m3: float = RHO0_KG_M3) -> pd.DataFrame:
+    """Python equivalent of ``python -m nps acoustics`` (long tables in, long table out).
+
+    ``sources``: columns node, [group], time_s, x_m, y_m, z_m (G, m), fx_N, fy_N, fz_N (force on
+    the fluid, N), optional volume_m3, optional vx_mps, vy_mps, vz_mps. ``observers``: observer,
+    x_m, y_m, z_m (position at t = 0), vx_mps, vy_mps, vz_mps. Returns observer, group (each
+    group and "total"), time_s (t_k = t_start_s + k·duration_s/n_samples), p_Pa.
+    """
+    src = sources_from_table(sources)
+    ids, obs = observers_from_table(observers)
+    grid = TimeGrid(float(t_start_s), float(duration_s), int(n_samples))
+    pressure = radiate_arrays(src, obs, grid, c0_mps=c0_mps, rho0_kg_m3=rho0_kg_m3)
+    return signals_table(ids, src.groups, pressure, grid)
+
+
+def _emission_time(x0: np.ndarray, v_obs: np.ndarray, t_s: float, y0: np.ndarray, v_src: np.ndarray, c0: float) -> np.ndarray:
+    """Emission time τ of a point y0 + v_src τ heard at t_s by observers x0 + v_obs t (closed form)."""
+    d = x0 + v_obs * t_s - (y0 + v_src * t_s)
+    dv = d @ v_src
+    a = c0 * c0 - v_src @ v_src
+    return t_s - (dv + np.sqrt(dv * dv + a * np.einsum("ij,ij->i", d, d))) / a
+
+
+def radiate_rotor(disk: pd.DataFrame, trim_row, observers: Observers, grid: TimeGrid, *, thickness=None,
+                  hinge_offset_m: float = 0.0) -> np.ndarray:
+    """Pressure (Pa) of one rotor, shape (n_obs, 2, n_samples), groups (loading, thickness).
+
+    ``disk``: disk table (docs/conventions.md), ``trim_row``: the rotor's ``trim.parquet`` row
+    (kinematics, ρ0 and c0). Observers moving with the aircraft use the periodic one-blade
+    path (exact periodicity and blade symmetry); any other observers get all blades over the
+    source-time span their window needs.
+    """
+    from nps.rotor import RotorMotion
+    from nps.sources import ThicknessModel, rotor_sources
+
+    thickness = ThicknessModel() if thickness is None else thickness
+    motion = RotorMotion.from_trim_row(trim_row)
+    c0 = float(trim_row["speed_of_sound_mps"])
+    rho0 = float(trim_row["density_kg_m3"])
+    kwargs = dict(thickness=thickness, hinge_offset_m=hinge_offset_m, rho0_kg_m3=rho0, c0_mps=c0)
+    if np.allclose(observers.velocity_mps, motion.velocity_mps[None, :], rtol=0.0, atol=1e-9 * c0):
+        sources = rotor_sources(disk, motion, **kwargs)
+    else:
+        reach = float((disk["r_m"] + disk["dr_m"] + disk["chord_m"]).max())
+        margin = 2.0 * reach / (c0 - np.linalg.norm(motion.velocity_mps)) + 8.0 * 2.0 * np.pi / motion.omega_rad_s / disk["psi_rad"].nunique()
+        t_last = grid.t_start_s + (grid.n_samples - 1) * grid.dt_s
+        first = _emission_time(observers.position_m, observers.velocity_mps, grid.t_start_s, motion.hub_position_m, motion.velocity_mps, c0)
+        last = _emission_time(observers.position_m, observers.velocity_mps, t_last, motion.hub_position_m, motion.velocity_mps, c0)
+        sources = rotor_sources(disk, motion, tau_range_s=(first.min() - margin, last.max() + margin), **kwargs)
+    return radiate_arrays(sources, observers, grid, c0_mps=c0, rho0_kg_m3=rho0)

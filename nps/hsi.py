@@ -1,0 +1,762 @@
+"""High-speed-impulsive (HSI) noise: amplify, shear and shock-fit each rotor's signal (thesis ch. 6).
+
+Each rotor's pressure signal (thickness + loading, one reference-rotor revolution on the
+uniform grid of docs/conventions.md "Pressure signals") is processed per observer with that
+rotor's own maximum radiation Mach number M_r and radiation distance r; the processed rotors are
+then summed (:func:`combine_rotors`). Steps, in order:
+
+1. **Kinematics** (:func:`radiation_mach`): M_r = max over one revolution and over the blades of
+   v_tip·r̂ / c, with v_tip the tip velocity in the ground frame G (air at rest) and r̂ the unit
+   vector from the tip's emission position to the observer's reception position (retarded-time
+   geometry, closed form for an observer moving at constant velocity). The radiation distance r
+   is |x_obs(t*) − x_hub(τ*)|: from the hub at the emission time τ* of the max-M_r sound to the
+   observer at its reception time t* (in hover: the hub-to-observer distance, the quantity the
+   calibration distance r0 = 3.09 R of Baeder's data refers to).
+2. **Amplification** eq. 6.1: p_amp = AMP(M_r) · p (:func:`amplification`).
+3. **Shear** eq. 6.3–6.6 (:func:`shear_angle_rad`, :func:`shear_delay_s`). Non-dimensional
+   pressure p̃ = p/(ρ c²) and time t̃ = t Ω/(2π) (revolutions of this rotor). Eq. 6.5 as printed
+   (Ã = p̃ r) is not dimensionless; NPS reads the "amplitude at release" as the spreading-
+   corrected amplitude referred to the calibration distance, Ã = p̃ · r / r0, so that
+   δt̃ = Ã tan γ_s · r/r0 = p̃ tan γ_s (r/r0)². At r = r0 this is exactly the calibrated shear
+   δt̃ = p̃ tan γ_s; for a source of fixed strength (p ∝ 1/r) the delay grows linearly with
+   distance. r0 = 3.09 R of the rotor being processed (the model is non-dimensional, so a
+   geometrically similar rotor at the same M_r and r/R is sheared alike). Sheared time
+   t_shear = t − δt: higher pressure arrives earlier (compressive steepening).
+4. **Shock fitting** (:func:`equal_area_shock_fit`): where the sheared curve is multivalued,
+   Whitham's equal-area rule, computed as the entropy weak solution of the inviscid Burgers
+   equation (see :func:`fit_shocks`), with any number of shocks, periodic wrap-around and
+   merging shocks.
+5. **Resampling** to the uniform input grid by point sampling of the single-valued (fitted)
+   signal. NPS fits before it resamples: resampling a multivalued curve is ill-defined.
+
+Validity: M_r < 1 (the retarded-time geometry has a unique solution and eq. 6.1/6.4 were fitted
+for M_r ≤ 0.95); observers must move with the aircraft (periodic signals, conventions.md).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Mapping, Sequence
+
+import numpy as np
+import pandas as pd
+from numba import njit, prange
+
+from nps.rotor import RotorMotion
+
+#: Calibration distance of eq. 6.5 in rotor radii (Baeder et al. in-plane observer, Table 6.1).
+R0_OVER_RADIUS = 3.09
+#: Azimuth samples per revolution for the search of max M_r (refined by a parabola).
+MACH_SAMPLES_PER_REV = 720
+#: Relative tolerance below which a pressure jump in the fitted signal is not a shock.
+_JUMP_RTOL = 1e-10
+
+SIGNAL_COLUMNS = ("observer", "group", "time_s", "p_Pa")
+OBSERVER_COLUMNS = ("observer", "x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps")
+
+
+# --------------------------------------------------------------------------- empirical fits
+def amplification(mach_r) -> np.ndarray:
+    """Amplification factor AMP(M_r), thesis eq. 6.1 (dimensionless, ≥ 1).
+
+    AMP = 1 + 0.1800844 M_r for M_r ≤ 0.687, else the cubic
+    42.504 M_r³ − 80.822 M_r² + 50.869 M_r − 9.4594 (continuous at 0.687 to 1e-4).
+    """
+    m = np.asarray(mach_r, dtype=float)
+    cubic = ((42.504 * m - 80.822) * m + 50.869) * m - 9.4594
+    return np.where(m <= 0.687, 1.0 + 0.1800844 * m, cubic)
+
+
+def shear_angle_rad(mach_r) -> np.ndarray:
+    """Shear angle γ_s(M_r) in rad in the (t̃, p̃) plane, thesis eq. 6.4.
+
+    γ_s = 0.0006 exp(8.0675 M_r) for M_r ≤ 0.87, else the cubic
+    914.12 M_r³ − 2645.3 M_r² + 2548.9 M_r − 816.7. The two branches differ by 0.10 rad at
+    0.87 (0.670 vs 0.566: the printed fit is discontinuous); NPS keeps the printed coefficients.
+    """
+    m = np.asarray(mach_r, dtype=float)
+    cubic = ((914.12 * m - 2645.3) * m + 2548.9) * m - 816.7
+    return np.where(m <= 0.87, 0.0006 * np.exp(8.0675 * m), cubic)
+
+
+# --------------------------------------------------------------------------- rotor state
+@dataclass(frozen=True)
+class HsiRotor:
+    """What the HSI model needs of one rotor (one ``trim.parquet`` row, SI units).
+
+    ``motion`` gives the hub path and blade azimuths in G (docs/conventions.md); ``radius_m``
+    is the tip radius; the air state sets ρ c² and the Mach numbers.
+    """
+
+    name: str
+    motion: RotorMotion
+    radius_m: float
+    density_kg_m3: float
+    speed_of_sound_mps: float
+
+    @classmethod
+    def from_trim_row(cls, row: Mapping) -> "HsiRotor":
+        return cls(
+            name=str(row["rotor"]),
+            motion=RotorMotion.from_trim_row(row),
+            radius_m=float(row["radius_m"]),
+            density_kg_m3=float(row["density_kg_m3"]),
+            speed_of_sound_mps=float(row["speed_of_sound_mps"]),
+        )
+
+    @property
+    def period_s(self) -> float:
+        """One revolution 2π/Ω."""
+        return 2.0 * np.pi / self.motion.omega_rad_s
+
+    @property
+    def reference_distance_m(self) -> float:
+        """Calibration distance r0 = 3.09 R of eq. 6.5."""
+        return R0_OVER_RADIUS * self.radius_m
+
+
+# --------------------------------------------------------------------------- kinematics
+@njit(cache=True)
+def _delay(d, v, c):
+    """Propagation time Δ > 0 with |d + v Δ| = c Δ (|v| < c): closed form of the quadratic."""
+    a = c * c - (v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+    b = d[0] * v[0] + d[1] * v[1] + d[2] * v[2]
+    dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+    return (b + np.sqrt(b * b + a * dd)) / a
+
+
+@njit(cache=True)
+def _tip_sample(hub0, vel, r_gh, radius, omega, sign, c, x0, vo, tau, psi):
+    """(M_r, radiation distance) of the sound a blade tip at azimuth ψ emits at source time τ."""
+    cp = np.cos(psi)
+    sp = sign * np.sin(psi)
+    dcp = -np.sin(psi)
+    dsp = sign * np.cos(psi)
+    hx = hub0[0] + vel[0] * tau
+    hy = hub0[1] + vel[1] * tau
+    hz = hub0[2] + vel[2] * tau
+    dx = x0[0] + vo[0] * tau - hx - radius * (r_gh[0, 0] * cp + r_gh[0, 1] * sp)
+    dy = x0[1] + vo[1] * tau - hy - radius * (r_gh[1, 0] * cp + r_gh[1, 1] * sp)
+    dz = x0[2] + vo[2] * tau - hz - radius * (r_gh[2, 0] * cp + r_gh[2, 1] * sp)
+    a = c * c - (vo[0] * vo[0] + vo[1] * vo[1] + vo[2] * vo[2])
+    b = dx * vo[0] + dy * vo[1] + dz * vo[2]
+    delta = (b + np.sqrt(b * b + a * (dx * dx + dy * dy + dz * dz))) / a
+    rx = dx + vo[0] * delta
+    ry = dy + vo[1] * delta
+    rz = dz + vo[2] * delta
+    ro = radius * omega
+    mach = ((vel[0] + ro * (r_gh[0, 0] * dcp + r_gh[0, 1] * dsp)) * rx
+            + (vel[1] + ro * (r_gh[1, 0] * dcp + r_gh[1, 1] * dsp)) * ry
+            + (vel[2] + ro * (r_gh[2, 0] * dcp + r_gh[2, 1] * dsp)) * rz) / (c * c * delta)
+    ox = x0[0] + vo[0] * (tau + delta) - hx
+    oy = x0[1] + vo[1] * (tau + delta) - hy
+    oz = x0[2] + vo[2] * (tau + delta) - hz
+    return mach, np.sqrt(ox * ox + oy * oy + oz * oz)
+
+
+@njit(cache=True, parallel=True)
+def _radiation_mach_kernel(hub0, vel, r_gh, radius, omega, sign, n_blades, c, obs_x, obs_v, t0, n_samples):
+    n_obs = obs_x.shape[0]
+    mach = np.empty(n_obs)
+    dist = np.empty(n_obs)
+    period = 2.0 * np.pi / omega
+    for o in prange(n_obs):
+        x0 = obs_x[o]
+        vo = obs_v[o]
+        # the revolution searched starts at the hub's emission time for reception at t0
+        d_hub = x0 + vo * t0 - hub0 - vel * t0
+        tau0 = t0 - _delay(d_hub, vel, c)
+        best = -np.inf
+        best_dist = 0.0
+        vals = np.empty(n_samples)
+        # an observer moving with the hub sees every blade alike (shifted by 1/B revolution)
+        same = vo[0] == vel[0] and vo[1] == vel[1] and vo[2] == vel[2]
+        for k in range(1 if same else n_blades):
+            for i in range(n_samples):
+                tau = tau0 + period * i / n_samples
+                vals[i] = _tip_sample(hub0, vel, r_gh, radius, omega, sign, c, x0, vo, tau,
+                                      omega * tau + 2.0 * np.pi * k / n_blades)[0]
+            for i in range(n_samples):
+                f0 = vals[i - 1] if i > 0 else vals[n_samples - 1]
+                f1 = vals[i]
+                f2 = vals[i + 1] if i < n_samples - 1 else vals[0]
+                if f1 >= f0 and f1 >= f2:
+                    curv = 2.0 * f1 - f0 - f2
+                    peak = f1 + (f2 - f0) ** 2 / (8.0 * curv) if curv > 0.0 else f1
+                    if peak > best:
+                        best = peak
+                        tau = tau0 + period * i / n_samples
+                        best_dist = _tip_sample(hub0, vel, r_gh, radius, omega, sign, c, x0, vo, tau,
+                                                omega * tau + 2.0 * np.pi * k / n_blades)[1]
+        mach[o] = best
+        dist[o] = best_dist
+    return mach, dist
+
+
+def radiation_mach(
+    rotor: HsiRotor,
+    observer_position_m: np.ndarray,
+    observer_velocity_mps: np.ndarray,
+    time_start_s: float = 0.0,
+    n_samples: int = MACH_SAMPLES_PER_REV,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Maximum radiation Mach number over one revolution and radiation distance per observer.
+
+    ``observer_position_m`` (n, 3): observer positions in G at t = 0; ``observer_velocity_mps``
+    (n, 3) their constant velocities in G. The revolution searched starts at the hub's emission
+    time for reception at ``time_start_s`` (the first sample of the signal grid). Blade k's tip
+    is at hub(τ) + R·R_GH·e_r(ψ_k(τ)), e_r = (cos ψ, s sin ψ, 0), ψ_k = Ωτ + 2πk/B; its velocity
+    in G is V + RΩ·R_GH·(−sin ψ, s cos ψ, 0); an observer moving with the hub sees all blades
+    alike, so only blade 0 is searched for it. Source-time dominant: for each emission time the
+    reception time solves |x(t) − y(τ)| = c (t − τ) in closed form. The maximum over
+    ``n_samples`` per revolution and blade is refined by a parabola through the three samples
+    around it. Returns (mach_r, distance_m), both shape (n,).
+    """
+    pos = np.ascontiguousarray(np.atleast_2d(observer_position_m), dtype=float)
+    vel = np.ascontiguousarray(np.atleast_2d(observer_velocity_mps), dtype=float)
+    if pos.shape != vel.shape or pos.shape[1] != 3:
+        raise ValueError(f"observer positions {pos.shape} and velocities {vel.shape} must both be (n, 3)")
+    c = rotor.speed_of_sound_mps
+    m = rotor.motion
+    for what, speeds in (("observer", np.linalg.norm(vel, axis=1)), ("hub", np.linalg.norm(m.velocity_mps)[None])):
+        if np.any(speeds >= c):
+            raise ValueError(f"{what} speed {speeds.max():.1f} m/s is not subsonic (c = {c:.1f} m/s)")
+    return _radiation_mach_kernel(
+        m.hub_position_m.astype(float), m.velocity_mps.astype(float), np.ascontiguousarray(m.r_gh, dtype=float),
+        rotor.radius_m, m.omega_rad_s, float(m.rotation_sign), m.n_blades, c, pos, vel, float(time_start_s),
+        int(n_samples),
+    )
+
+
+def shear_delay_s(p_pa, mach_r, distance_m, rotor: HsiRotor) -> np.ndarray:
+    """Arrival-time delay δt (s) of eq. 6.5 in NPS's dimensionally consistent reading.
+
+    δt = (2π/Ω) · p/(ρ c²) · tan γ_s(M_r) · (r/r0)², with ``p_pa`` the amplified pressure;
+    ``mach_r`` and ``distance_m`` broadcast against ``p_pa``. Sheared time t − δt (eq. 6.6).
+    """
+    scale = (np.asarray(distance_m, dtype=float) / rotor.reference_distance_m) ** 2
+    tan_gamma = np.tan(shear_angle_rad(mach_r))
+    rho_c2 = rotor.density_kg_m3 * rotor.speed_of_sound_mps**2
+    return rotor.period_s * np.asarray(p_pa, dtype=float) / rho_c2 * tan_gamma * scale
+
+
+# --------------------------------------------------------------------------- shock fitting
+@njit(cache=True)
+def _fold_orientation(t, p, period):
+    """+1 if every backward step raises p (compressive folds), −1 if every one lowers it,
+    0 when the curve is strictly increasing in time, 2 when inconsistent."""
+    n = t.size
+    pos = 0
+    neg = 0
+    bad = 0
+    last = n if period > 0.0 else n - 1
+    for i in range(last):
+        j = i + 1
+        tj = t[j] if j < n else t[0] + period
+        pj = p[j] if j < n else p[0]
+        dt = tj - t[i]
+        dp = pj - p[i]
+        if dt <= 0.0:
+            if dp > 0.0:
+                pos += 1
+            elif dp < 0.0:
+                neg += 1
+            else:
+                bad += 1
+    if pos == 0 and neg == 0 and bad == 0:
+        return 0
+    if bad > 0 or (pos > 0 and neg > 0):
+        return 2
+    return 1 if pos > 0 else -1
+
+
+@njit(cache=True)
+def _envelope(t, p, wa, wb, sigma, p_ref):
+    """Upper envelope over [wa, wb] of Ψ(s) = σ ∫ (p − p_ref) dt along the polyline (t, p).
+
+    Along segment j (t_j → t_j+1, linear p) Ψ is quadratic in t. The envelope's slope σ(p − p_ref)
+    is the weak solution (Hopf–Lax), so the pressure of the top segment at each time is the fitted
+    signal. Breakpoints: vertex times and the roots of Ψ_i − Ψ_j of the segments active between
+    them. Returns (time, p, shock_time, p_before, p_after, status); status 1: the curve leaves a
+    gap in [wa, wb]; 2: the envelope jumps (fold of the wrong orientation).
+    """
+    n = t.size
+    nseg = n - 1
+    psi = np.zeros(n)
+    for i in range(nseg):
+        psi[i + 1] = psi[i] + sigma * (0.5 * (p[i] + p[i + 1]) - p_ref) * (t[i + 1] - t[i])
+    g = np.zeros(nseg)
+    lo = np.empty(nseg)
+    hi = np.empty(nseg)
+    valid = np.zeros(nseg, dtype=np.bool_)
+    for j in range(nseg):
+        dt = t[j + 1] - t[j]
+        lo[j] = min(t[j], t[j + 1])
+        hi[j] = max(t[j], t[j + 1])
+        if dt != 0.0 and hi[j] > wa and lo[j] < wb:
+            valid[j] = True
+            g[j] = (p[j + 1] - p[j]) / dt
+    segs = np.nonzero(valid)[0]
+    order = segs[np.argsort(lo[segs], kind="mergesort")]
+    inside = (t > wa) & (t < wb)
+    ev = np.empty(inside.sum() + 2)
+    ev[0] = wa
+    ev[1:-1] = np.sort(t[inside])
+    ev[-1] = wb
+    pscale = np.max(np.abs(p - p_ref)) + 1e-300
+    ptol = _JUMP_RTOL * pscale
+    psitol = 1e-9 * pscale * (wb - wa)
+
+    out_t = [wa]
+    out_p = [0.0]
+    sh_t = [0.0]
+    sh_m = [0.0]
+    sh_p = [0.0]
+    n_out = 0
+    n_sh = 0
+    active = np.empty(order.size, dtype=np.int64)
+    na = 0
+    ptr = 0
+    prev = -1
+    status = 0
+    roots = np.empty(8)
+    for ie in range(ev.size - 1):
+        a = ev[ie]
+        b = ev[ie + 1]
+        if b <= a:
+            continue
+        while ptr < order.size and lo[order[ptr]] <= a:
+            active[na] = order[ptr]
+            na += 1
+            ptr += 1
+        keep = 0
+        for q in range(na):
+            if hi[active[q]] > a:
+                active[keep] = active[q]
+                keep += 1
+        na = keep
+        if na == 0:
+            status = 1
+            break
+        # breakpoints inside (a, b): roots of the pairwise differences of Ψ
+        nb = 0
+        if na > 1:
+            if roots.size < na * na + 2:
+                roots = np.empty(2 * na * na + 2)
+            for q in range(na):
+                i = active[q]
+                ui = a - t[i]
+                vi = psi[i] + sigma * ((p[i] - p_ref) * ui + 0.5 * g[i] * ui * ui)
+                si = sigma * (p[i] + g[i] * ui - p_ref)
+                for r in range(q + 1, na):
+                    j = active[r]
+                    uj = a - t[j]
+                    vj = psi[j] + sigma * ((p[j] - p_ref) * uj + 0.5 * g[j] * uj * uj)
+                    sj = sigma * (p[j] + g[j] * uj - p_ref)
+                    c0 = vi - vj
+                    c1 = si - sj
+                    c2 = 0.5 * sigma * (g[i] - g[j])
+                    if c2 == 0.0:
+                        if c1 != 0.0:
+                            x = -c0 / c1
+                            if 0.0 < x < b - a:
+                                roots[nb] = a + x
+                                nb += 1
+                        continue
+                    disc = c1 * c1 - 4.0 * c2 * c0
+                    if disc < 0.0:
+                        continue
+                    qq = -0.5 * (c1 + np.copysign(np.sqrt(disc), c1))
+                    for x in (qq / c2, c0 / qq if qq != 0.0 else -1.0):
+                        if 0.0 < x < b - a:
+                            roots[nb] = a + x
+                            nb += 1
+        cuts = np.empty(nb + 2)
+        cuts[0] = a
+        cuts[1 : nb + 1] = np.sort(roots[:nb])
+        cuts[nb + 1] = b
+        for ic in range(nb + 1):
+            x0 = cuts[ic]
+            x1 = cuts[ic + 1]
+            if x1 <= x0:
+                continue
+            xm = 0.5 * (x0 + x1)
+            top = active[0]
+            best = -np.inf
+            for q in range(na):
+                j = active[q]
+                u = xm - t[j]
+                v = psi[j] + sigma * ((p[j] - p_ref) * u + 0.5 * g[j] * u * u)
+                if v > best:
+                    best = v
+                    top = j
+            if prev >= 0 and top != prev:
+                u0 = x0 - t[prev]
+                u1 = x0 - t[top]
+                v0 = psi[prev] + sigma * ((p[prev] - p_ref) * u0 + 0.5 * g[prev] * u0 * u0)
+                v1 = psi[top] + sigma * ((p[top] - p_ref) * u1 + 0.5 * g[top] * u1 * u1)
+                if abs(v1 - v0) > psitol:
+                    status = 2
+            prev = top
+            for x in (x0, x1):
+                pv = p[top] + g[top] * (x - t[top])
+                if n_out == 0:
+                    out_p[0] = pv
+                    n_out = 1
+                elif x > out_t[n_out - 1]:
+                    out_t.append(x)
+                    out_p.append(pv)
+                    n_out += 1
+                elif abs(pv - out_p[n_out - 1]) > ptol:
+                    if n_sh == 0:
+                        sh_t[0] = out_t[n_out - 1]
+                        sh_m[0] = out_p[n_out - 1]
+                        sh_p[0] = pv
+                    else:
+                        sh_t.append(out_t[n_out - 1])
+                        sh_m.append(out_p[n_out - 1])
+                        sh_p.append(pv)
+                    n_sh += 1
+                    out_t.append(np.nextafter(out_t[n_out - 1], np.inf))
+                    out_p.append(pv)
+                    n_out += 1
+    return (np.array(out_t), np.array(out_p), np.array(sh_t)[:n_sh], np.array(sh_m)[:n_sh],
+            np.array(sh_p)[:n_sh], status)
+
+
+@njit(cache=True)
+def _fit_periodic(t, p, period, wa):
+    """Envelope of the periodic curve (t, p) (closing segment to t[0] + period) over
+    [wa, wa + period]; the curve is unrolled over three periods so folds may wrap around."""
+    n = t.size
+    sigma = _fold_orientation(t, p, period)
+    if sigma == 2:
+        return np.empty(0), np.empty(0), np.empty(0), np.empty(0), np.empty(0), 3
+    if sigma == 0:
+        sigma = 1
+    area = 0.0
+    for i in range(n):
+        tj = t[i + 1] if i + 1 < n else t[0] + period
+        pj = p[i + 1] if i + 1 < n else p[0]
+        area += 0.5 * (p[i] + pj) * (tj - t[i])
+    tt = np.empty(3 * n + 1)
+    pp = np.empty(3 * n + 1)
+    for m in range(3):
+        tt[m * n : (m + 1) * n] = t + (m - 1) * period
+        pp[m * n : (m + 1) * n] = p
+    tt[3 * n] = t[0] + 2.0 * period
+    pp[3 * n] = p[0]
+    p_ref = area / period
+    ot, op, st, sm, sp, status = _envelope(tt, pp, wa, wa + period, float(sigma), p_ref)
+    if status == 0 and ot[-1] == wa + period and abs(op[-1] - op[0]) > _JUMP_RTOL * np.max(np.abs(p - p_ref)):
+        # a shock on the window edge: keep it as the pair (wb⁻, p_before), (wa + period, p_after)
+        ot[-1] = np.nextafter(wa + period, -np.inf)
+        st = np.concatenate((np.array([wa]), st))
+        sm = np.concatenate((np.array([op[-1]]), sm))
+        sp = np.concatenate((np.array([op[0]]), sp))
+    return ot, op, st, sm, sp, status
+
+
+@njit(cache=True)
+def _sample(xp, fp, x):
+    """Linear interpolation of the increasing polyline (xp, fp) at increasing x."""
+    out = np.empty(x.size)
+    j = 0
+    for i in range(x.size):
+        while j < xp.size - 2 and xp[j + 1] < x[i]:
+            j += 1
+        w = (x[i] - xp[j]) / (xp[j + 1] - xp[j])
+        w = min(max(w, 0.0), 1.0)
+        out[i] = fp[j] + w * (fp[j + 1] - fp[j])
+    return out
+
+
+@njit(cache=True, parallel=True)
+def _shear_fit_resample(time_s, p_amp, delay_s, period):
+    """Sheared, fitted and resampled signals for all observers (rows), on the grid ``time_s``."""
+    n_obs = p_amp.shape[0]
+    out = np.empty_like(p_amp)
+    n_shocks = np.zeros(n_obs, dtype=np.int64)
+    status = np.zeros(n_obs, dtype=np.int64)
+    for o in prange(n_obs):
+        ts = time_s - delay_s[o]
+        ft, fp, st, _, _, stat = _fit_periodic(ts, p_amp[o], period, time_s[0])
+        status[o] = stat
+        if stat == 0:
+            out[o] = _sample(ft, fp, time_s)
+            n_shocks[o] = st.size
+        else:
+            out[o] = np.nan
+    return out, n_shocks, status
+
+
+_STATUS_TEXT = {
+    1: "the curve does not cover the whole period (time steps must advance by less than a period overall)",
+    2: "the fold orientation is inconsistent (the equal-area envelope is discontinuous)",
+    3: "backward time steps both raise and lower the pressure (no consistent shock orientation)",
+}
+
+
+@dataclass(frozen=True)
+class ShockFit:
+    """Single-valued signal from :func:`fit_shocks` and its shocks.
+
+    ``time_s`` strictly increasing; a shock at t_s is the pair (t_s, p_before), (t_s⁺, p_after)
+    with t_s⁺ = nextafter(t_s, +inf), so linear interpolation reproduces the jump exactly.
+    """
+
+    time_s: np.ndarray
+    p_pa: np.ndarray
+    shock_time_s: np.ndarray
+    p_before_pa: np.ndarray
+    p_after_pa: np.ndarray
+
+
+def fit_shocks(time_s, p_pa, period_s: float | None = None) -> ShockFit:
+    """Equal-area (Whitham) shock fit of a possibly multivalued signal (t_i, p_i).
+
+    The input is the polyline through the samples in order (linear in between). Where time runs
+    backward the curve is multivalued; the fitted signal is the entropy weak solution of the
+    inviscid Burgers equation for which the fold is a compression: with Φ = ∫ p dt along the
+    curve, the fitted Φ(t) is the upper envelope of the multivalued Φ (lower envelope when
+    backward steps lower the pressure), Hopf–Lax. At each shock the two branches have equal Φ,
+    i.e. the loop cut off by the vertical line at t_s has zero net signed area: the areas on
+    both sides are equal (Whitham). Several folds, overlapping (merging) shocks and, with
+    ``period_s``, folds across the period boundary are handled; a periodic input (closing
+    segment to time_s[0] + period_s) returns one period starting at time_s[0] (a shock exactly
+    at time_s[0] is listed there and encoded by the last point, at the time just below
+    time_s[0] + period_s, and the first). An input that
+    is already strictly increasing in time is returned unchanged. Aperiodic inputs must start
+    and end on their earliest and latest times.
+    """
+    t = np.ascontiguousarray(time_s, dtype=float)
+    p = np.ascontiguousarray(p_pa, dtype=float)
+    if t.ndim != 1 or t.shape != p.shape or t.size < 3:
+        raise ValueError(f"time_s and p_pa must be 1-D of equal length >= 3, got {t.shape} and {p.shape}")
+    if not (np.isfinite(t).all() and np.isfinite(p).all()):
+        raise ValueError("time_s and p_pa must be finite")
+    empty = np.empty(0)
+    if period_s is None:
+        steps = np.diff(t)
+        if (steps > 0).all():
+            return ShockFit(t.copy(), p.copy(), empty, empty, empty)
+        if t.min() < t[0] or t.max() > t[-1]:
+            raise ValueError("aperiodic signal folds past its first or last sample; pass period_s for a periodic one")
+        sigma = _fold_orientation(t, p, 0.0)
+        status = 3
+        if sigma != 2:
+            result = _envelope(t, p, t[0], t[-1], float(sigma), float(p.mean()))
+            status = result[-1]
+    else:
+        period = float(period_s)
+        if not period > 0.0:
+            raise ValueError(f"period_s must be > 0, got {period_s}")
+        if (np.diff(t) > 0).all() and t[0] + period > t[-1]:
+            return ShockFit(t.copy(), p.copy(), empty, empty, empty)
+        result = _fit_periodic(t, p, period, t[0])
+        status = result[-1]
+        if status == 0:
+            keep = result[0] < t[0] + period
+            result = (result[0][keep], result[1][keep], *result[2:])
+    if status:
+        raise ValueError(f"shock fit failed: {_STATUS_TEXT[status]}")
+    return ShockFit(*result[:5])
+
+
+def equal_area_shock_fit(time_s, p_pa, period_s: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Single-valued ``(time_s, p_pa)`` from a possibly multivalued signal; see :func:`fit_shocks`."""
+    fit = fit_shocks(time_s, p_pa, period_s)
+    return fit.time_s, fit.p_pa
+
+
+# --------------------------------------------------------------------------- per-rotor processing
+@dataclass(frozen=True)
+class HsiIntermediate:
+    """The steps of thesis Fig. 6.3 for one observer (times in s, pressures in Pa)."""
+
+    observer: int
+    mach_r: float
+    distance_m: float
+    amplification: float
+    shear_angle_rad: float
+    time_s: np.ndarray
+    p_original_pa: np.ndarray
+    p_amplified_pa: np.ndarray
+    time_sheared_s: np.ndarray
+    fitted: ShockFit
+    p_final_pa: np.ndarray
+
+
+@dataclass(frozen=True)
+class HsiResult:
+    """Output of :func:`process`: the ``hsi`` signal table, per-observer diagnostics and the
+    optional intermediate signals of one observer."""
+
+    signals: pd.DataFrame
+    diagnostics: pd.DataFrame
+    intermediate: HsiIntermediate | None
+
+
+def process_signals(time_s, p_pa, mach_r, distance_m, rotor: HsiRotor) -> tuple[np.ndarray, np.ndarray]:
+    """Amplify, shear, shock-fit and resample the periodic signals ``p_pa`` (n_obs, N).
+
+    ``time_s`` (N,) is the uniform grid t0 + k T/N of one period T = N Δt; ``mach_r`` and
+    ``distance_m`` (n_obs,) from :func:`radiation_mach`. Returns (p_hsi (n_obs, N) on the same
+    grid, number of shocks per observer).
+    """
+    t = np.ascontiguousarray(time_s, dtype=float)
+    period = _grid_period(t)
+    p_amp = np.ascontiguousarray(np.atleast_2d(p_pa) * amplification(mach_r)[:, None], dtype=float)
+    delay = np.ascontiguousarray(shear_delay_s(p_amp, np.asarray(mach_r)[:, None], np.asarray(distance_m)[:, None], rotor))
+    out, n_shocks, status = _shear_fit_resample(t, p_amp, delay, period)
+    if status.any():
+        o = int(np.argmax(status != 0))
+        raise ValueError(f"rotor {rotor.name}: shock fit failed for signal row {o}: {_STATUS_TEXT[int(status[o])]}")
+    return out, n_shocks
+
+
+def _grid_period(t: np.ndarray) -> float:
+    steps = np.diff(t)
+    if t.ndim != 1 or t.size < 3 or not (steps > 0).all():
+        raise ValueError("time_s must be a strictly increasing 1-D grid of >= 3 samples")
+    dt = (t[-1] - t[0]) / (t.size - 1)
+    if np.max(np.abs(steps - dt)) > 1e-6 * dt:
+        raise ValueError(f"time_s must be uniform (max step deviation {np.max(np.abs(steps - dt)):.3g} s)")
+    return dt * t.size
+
+
+def _signal_matrix(signals: pd.DataFrame, groups=("thickness", "loading")) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(observer ids, time grid, sum over the groups of p (n_obs, N)) from a signal table."""
+    missing = [c for c in SIGNAL_COLUMNS if c not in signals.columns]
+    if missing:
+        raise ValueError(f"pressure signals: missing column(s) {missing}; expected {list(SIGNAL_COLUMNS)}")
+    for col in ("time_s", "p_Pa"):
+        if not np.isfinite(signals[col].to_numpy(dtype=float)).all():
+            raise ValueError(f"pressure signals: column '{col}' has non-finite values")
+    obs_values, obs_code = np.unique(signals["observer"].to_numpy(), return_inverse=True)
+    grp_code, grp_values = pd.factorize(signals["group"], sort=True)
+    unknown = sorted(set(grp_values) - set(groups))
+    if unknown:
+        raise ValueError(f"pressure signals: column 'group' has {unknown}; expected {list(groups)}")
+    n_obs, n_grp = obs_values.size, grp_values.size
+    key = obs_code * n_grp + grp_code
+    counts = np.bincount(key, minlength=n_obs * n_grp)
+    if counts.min() == 0 or counts.min() != counts.max():
+        raise ValueError("pressure signals: every observer needs every group with the same number of samples")
+    n = int(counts[0])
+    time_all = signals["time_s"].to_numpy(dtype=float)
+    order = np.lexsort((time_all, key))
+    times = time_all[order].reshape(n_obs * n_grp, n)
+    if not np.allclose(times, times[0], rtol=0.0, atol=1e-9 * (times[0, -1] - times[0, 0])):
+        raise ValueError("pressure signals: all observers and groups must share one time grid")
+    p = signals["p_Pa"].to_numpy(dtype=float)[order].reshape(n_obs, n_grp, n).sum(axis=1)
+    observers = obs_values
+    return observers.astype(np.int32), times[0], p
+
+
+def process(
+    signals: pd.DataFrame,
+    observers: pd.DataFrame,
+    trim_row: Mapping,
+    *,
+    intermediate_observer: int | None = None,
+) -> HsiResult:
+    """HSI processing of one rotor's pressure-signal table (docs/conventions.md artifacts).
+
+    ``signals``: columns observer, group (thickness, loading), time_s, p_Pa, one period on a
+    uniform grid; the rotor total (sum of the groups) is processed. ``observers``: observer,
+    x_m, y_m, z_m (G at t = 0), vx_mps, vy_mps, vz_mps, which must equal the aircraft velocity
+    (observers moving with the aircraft: periodic signals). ``trim_row``: this rotor's trim row.
+    Returns the ``hsi`` group table on the same grid, diagnostics (observer, mach_r,
+    radiation_distance_m, amplification, shear_angle_rad, n_shocks) and, if asked, the
+    intermediate signals of ``intermediate_observer``.
+    """
+    rotor = HsiRotor.from_trim_row(trim_row)
+    ids, time_s, p = _signal_matrix(signals)
+    missing = [c for c in OBSERVER_COLUMNS if c not in observers.columns]
+    if missing:
+        raise ValueError(f"observers: missing column(s) {missing}; expected {list(OBSERVER_COLUMNS)}")
+    obs = observers.set_index("observer")
+    absent = sorted(set(ids.tolist()) - set(obs.index.tolist()))
+    if absent:
+        raise ValueError(f"observers: no row for observer(s) {absent[:5]} present in the pressure signals")
+    obs = obs.loc[ids]
+    pos = obs[["x_m", "y_m", "z_m"]].to_numpy(dtype=float)
+    vel = obs[["vx_mps", "vy_mps", "vz_mps"]].to_numpy(dtype=float)
+    off = np.abs(vel - rotor.motion.velocity_mps).max(axis=1)
+    if np.any(off > 1e-6 * max(1.0, np.linalg.norm(rotor.motion.velocity_mps))):
+        bad = int(ids[np.argmax(off)])
+        raise ValueError(
+            f"observers: observer {bad} velocity {vel[np.argmax(off)]} m/s differs from the aircraft velocity "
+            f"{rotor.motion.velocity_mps} m/s; the HSI stage needs observers moving with the aircraft (periodic signals)"
+        )
+    if intermediate_observer is not None and intermediate_observer not in set(ids.tolist()):
+        raise ValueError(f"intermediate observer {intermediate_observer} is not in the pressure signals")
+    mach_r, distance = radiation_mach(rotor, pos, vel, float(time_s[0]))
+    if np.any(mach_r >= 1.0):
+        bad = int(ids[np.argmax(mach_r)])
+        raise ValueError(f"rotor {rotor.name}: observer {bad} sees M_r = {mach_r.max():.3f} >= 1; HSI model needs M_r < 1")
+    p_hsi, n_shocks = process_signals(time_s, p, mach_r, distance, rotor)
+    n = time_s.size
+    table = pd.DataFrame(
+        {
+            "observer": np.repeat(ids, n).astype(np.int32),
+            "group": "hsi",
+            "time_s": np.tile(time_s, ids.size),
+            "p_Pa": p_hsi.ravel(),
+        }
+    )
+    diagnostics = pd.DataFrame(
+        {
+            "observer": ids,
+            "mach_r": mach_r,
+            "radiation_distance_m": distance,
+            "amplification": amplification(mach_r),
+            "shear_angle_rad": shear_angle_rad(mach_r),
+            "n_shocks": n_shocks.astype(np.int32),
+        }
+    )
+    inter = None
+    if intermediate_observer is not None:
+        o = int(np.nonzero(ids == intermediate_observer)[0][0])
+        amp = float(amplification(mach_r[o]))
+        p_amp = p[o] * amp
+        t_sheared = time_s - shear_delay_s(p_amp, mach_r[o], distance[o], rotor)
+        inter = HsiIntermediate(
+            observer=int(intermediate_observer),
+            mach_r=float(mach_r[o]),
+            distance_m=float(distance[o]),
+            amplification=amp,
+            shear_angle_rad=float(shear_angle_rad(mach_r[o])),
+            time_s=time_s,
+            p_original_pa=p[o],
+            p_amplified_pa=p_amp,
+            time_sheared_s=t_sheared,
+            fitted=fit_shocks(t_sheared, p_amp, _grid_period(time_s)),
+            p_final_pa=p_hsi[o],
+        )
+    return HsiResult(table, diagnostics, inter)
+
+
+def combine_rotors(tables: Sequence[pd.DataFrame], group: str = "hsi") -> pd.DataFrame:
+    """Sum per-rotor signal tables (same observers and time grid) into one aircraft signal.
+
+    Rows of every table are summed per (observer, time_s) over all its groups; the result has
+    group ``group``. Rotors are combined after each has been processed with its own M_r and
+    distance (thesis ch. 6).
+    """
+    if not tables:
+        raise ValueError("combine_rotors: no tables given")
+    total = None
+    for k, table in enumerate(tables):
+        ids, time_s, p = _signal_matrix(table, groups=("thickness", "loading", "hsi"))
+        if total is None:
+            total, ids0, time0 = p, ids, time_s
+        elif not (np.array_equal(ids, ids0) and np.allclose(time_s, time0, rtol=0, atol=1e-9 * (time0[-1] - time0[0]))):
+            raise ValueError(f"combine_rotors: table {k} has other observers or another time grid than table 0")
+        else:
+            total = total + p
+    n = time0.size
+    return pd.DataFrame(
+        {"observer": np.repeat(ids0, n).astype(np.int32), "group": group, "time_s": np.tile(time0, ids0.size), "p_Pa": total.ravel()}
+    )

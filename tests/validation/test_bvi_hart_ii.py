@@ -1,0 +1,100 @@
+"""HART-II baseline: BVI loading at r/R = 0.87 and tip-vortex positions vs measurement.
+
+Data: tests/data/hart_ii (HART-II via OpenCOPTER, see README there). Case set-up:
+tests/validation/hart_ii_case.py. Model defaults (A, B, C, D = 0.5, 1, 1.1, 0.85; r_c = c/2;
+Sears response; 0/1-rev harmonics removed). Figures are written to $NPS_FIGURES_DIR when set
+(the copies in docs/figures/ were made that way).
+
+Measured at the time of writing (docs/models/wake_bvi.md):
+- advancing window 30°–80°: high-passed (≥ 10/rev) peak-to-peak 0.054 vs measured 0.022
+  (×2.5; quasi-steady lifting line ×7.4); cross-correlation 0.87 at a lag of −9°.
+- retreating window 280°–330°: 0.047 vs 0.035 (×1.3; quasi-steady ×3.2); correlation
+  0.77 at +7°.
+- PIV: mean miss distance 0.15 m (1.2 c), predicted vortices 0.095 m too low on average.
+"""
+
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import hart_ii_case as h
+from nps import bvi, wake
+
+
+@pytest.fixture(scope="module")
+def hart():
+    return h.run()
+
+
+@pytest.fixture(scope="module")
+def hart_quasi_steady():
+    return h.run(bvi_model=bvi.BVIModel(unsteady=False))
+
+
+def test_bvi_events_in_measured_windows(hart):
+    """BVI content (≥ 10/rev) is concentrated in the measured windows: the peak-to-peak of the
+    high-passed M²C_n in 30°–80° and 280°–330° is ≥ 2× that in the quiet 120°–240° sector, as
+    measured (a wake on the wrong side of the disk or a sign error moves the events)."""
+    hp = h.high_pass(hart.cn_bvi)
+    psi = hart.psi_deg
+
+    def p2p(lo, hi):
+        return np.ptp(hp[(psi >= lo) & (psi <= hi)])
+
+    quiet = p2p(120, 240)
+    assert p2p(30, 80) > 2 * quiet
+    assert p2p(280, 330) > 2 * quiet
+    pm, cm = h.measured_cn()
+    hm = h.high_pass(cm)
+    assert np.ptp(hm[(pm >= 30) & (pm <= 80)]) > 2 * np.ptp(hm[(pm >= 120) & (pm <= 240)])
+
+
+def test_bvi_phase_and_amplitude(hart, hart_quasi_steady):
+    """Phase: the high-passed model and measurement correlate with ρ ≥ 0.7 at a lag within
+    ±10° in both windows. Amplitude: peak-to-peak within a factor 3 of the measured one in
+    both windows with the Sears response, and closer to it than the quasi-steady lifting line
+    (the thesis model, which matched event locations only)."""
+    pm, cm = h.measured_cn()
+    for lo, hi in ((30, 80), (280, 330)):
+        lag, rho = h.window_lag(hart.psi_deg, hart.cn_bvi, pm, cm, lo, hi)
+        assert abs(lag) <= 10.0 and rho >= 0.7, (lo, hi, lag, rho)
+        _, p2p_meas, _ = h.window_metrics(pm, cm, lo, hi)
+        _, p2p_model, _ = h.window_metrics(hart.psi_deg, hart.cn_bvi, lo, hi)
+        _, p2p_qs, _ = h.window_metrics(hart.psi_deg, hart_quasi_steady.cn_bvi, lo, hi)
+        assert p2p_meas / 3 <= p2p_model <= 3 * p2p_meas, (lo, hi, p2p_model, p2p_meas)
+        assert abs(np.log(p2p_model / p2p_meas)) < abs(np.log(p2p_qs / p2p_meas))
+
+
+def test_mean_loading_matches_measured_level(hart):
+    """Trimmed to the test thrust, the mean M²C_n at r/R = 0.87 is within 10 % of measured."""
+    _, cm = h.measured_cn()
+    assert hart.cn_bvi.mean() == pytest.approx(cm.mean(), rel=0.10)
+
+
+def test_tip_vortex_positions_against_piv(hart):
+    """Every PIV vortex has a predicted vortex within 0.3 m (2.5 c) in its cut plane; the mean
+    miss distance is below 0.2 m (1.65 c). (Beddoes' prescribed wake places the vortices
+    ≈ 0.1 m too close to the disk here; see docs/models/wake_bvi.md.)"""
+    records = h.piv_miss_distances(hart.state, wake.WakeModel())
+    miss = np.array([r[-1] for r in records])
+    assert len(records) == 46
+    assert miss.max() < 0.3
+    assert miss.mean() < 0.2
+
+
+def test_write_figures(hart, tmp_path):
+    """The comparison figures render (written to $NPS_FIGURES_DIR when set)."""
+    from nps.plots import wake as plots
+
+    out = Path(os.environ.get("NPS_FIGURES_DIR", tmp_path))
+    out.mkdir(parents=True, exist_ok=True)
+    pm, cm = h.measured_cn()
+    fig = plots.hart_ii_loading(pm, cm, hart.psi_deg, hart.cn_base, hart.cn_bvi,
+                                (h.high_pass(cm), h.high_pass(hart.cn_bvi)), title="HART-II BL, r/R = 0.87")
+    fig.savefig(out / "hart_ii_cnm2.png", dpi=110)
+    records = h.piv_miss_distances(hart.state, wake.WakeModel())
+    fig2 = plots.hart_ii_vortices(records, title="HART-II BL tip-vortex positions")
+    fig2.savefig(out / "hart_ii_piv.png", dpi=90)
+    assert (out / "hart_ii_cnm2.png").stat().st_size > 10_000

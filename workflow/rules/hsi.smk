@@ -1,0 +1,78 @@
+# High-speed-impulsive noise (issue 7): each rotor's signals amplified, sheared and shock-fitted per
+# observer with the rotor's own M_r and radiation distance (nps.hsi); metrics sum the rotors.
+# Only scheduled when config models.hsi is true (metrics then read hsi/ instead of acoustics/).
+
+
+rule hsi:
+    input:
+        signals=f"{RESULTS}/{{aircraft}}/{{segment}}/acoustics/{{obsset}}/{{rotor}}_{{variant}}.parquet",
+        observers=f"{RESULTS}/{{aircraft}}/{{segment}}/observers/{{obsset}}.parquet",
+        trim=f"{RESULTS}/{{aircraft}}/{{segment}}/trim.parquet",
+    output:
+        signals=f"{RESULTS}/{{aircraft}}/{{segment}}/hsi/{{obsset}}/{{rotor}}_{{variant}}.parquet",
+        diagnostics=f"{RESULTS}/{{aircraft}}/{{segment}}/hsi/{{obsset}}/{{rotor}}_{{variant}}_diagnostics.parquet",
+    params:
+        code=nps_hash("hsi"),
+    log:
+        log_path("hsi", "{aircraft}/{segment}/{obsset}/{rotor}_{variant}"),
+    benchmark:
+        bench_path("hsi", "{aircraft}/{segment}/{obsset}/{rotor}_{variant}")
+    threads: 2
+    resources:
+        mem_mb=1500,
+        runtime=5,
+    script:
+        "../scripts/hsi.py"
+
+
+def hsi_figure_inputs(wildcards):
+    """Unprocessed and HSI signals of every rotor of the aircraft for one observer set."""
+    base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
+    rotors = rotor_names(wildcards.aircraft)
+    inputs = {f"signal_{r}": f"{base}/acoustics/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors}
+    inputs.update({f"hsi_{r}": f"{base}/hsi/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors})
+    return inputs
+
+
+rule hsi_figure:
+    input:
+        unpack(hsi_figure_inputs),
+        observers=f"{RESULTS}/{{aircraft}}/{{segment}}/observers/{{obsset}}.parquet",
+    output:
+        report(
+            f"{RESULTS}/{{aircraft}}/{{segment}}/figures/hsi_{{obsset}}_{{variant}}.png",
+            caption="../report/hsi_observers.rst",
+            category="HSI noise",
+            subcategory="{aircraft} {segment}",
+            labels={"aircraft": "{aircraft}", "segment": "{segment}", "observers": "{obsset}", "loads": "{variant}"},
+        ),
+    params:
+        rotors=lambda wildcards: rotor_names(wildcards.aircraft),
+        code=nps_hash("hsi", "plots/hsi"),
+    log:
+        log_path("hsi_figure", "{aircraft}/{segment}/{obsset}_{variant}"),
+    benchmark:
+        bench_path("hsi_figure", "{aircraft}/{segment}/{obsset}_{variant}")
+    threads: 1
+    resources:
+        mem_mb=800,
+        runtime=5,
+    script:
+        "../scripts/hsi_figure.py"
+
+
+if config["models"]["hsi"]:
+    ALL_TARGETS.extend(
+        f"{RESULTS}/{a}/{s}/hsi/{o}/{r}_{v}.parquet"
+        for a, s in campaign_pairs()
+        for o in observer_sets(s)
+        for r in rotor_names(a)
+        for v in variants(s)
+    )
+    ALL_TARGETS.extend(
+        f"{RESULTS}/{a}/{s}/figures/hsi_{o}_{v}.png"
+        for a, s in campaign_pairs()
+        for o in observer_sets(s)
+        if config["observer_sets"][o]["kind"] == "points_ahead"
+        for v in variants(s)
+    )

@@ -1,0 +1,66 @@
+# Noise metrics (issue 6): OASPL, OASPL_A, BVISPL, PNL(T), per-source levels and 1/3-octave bands
+# per aircraft x segment x observer set x variant, from the summed rotor signals (+ HSI, Pegg
+# broadband, ISO 9613-1 absorption when the models are on).
+
+
+def metrics_signal_inputs(wildcards):
+    """Pressure signals of every rotor of the aircraft (and their HSI-processed versions)."""
+    base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
+    rotors = rotor_names(wildcards.aircraft)
+    inputs = {
+        f"signal_{r}": f"{base}/acoustics/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors
+    }
+    if config["models"]["hsi"]:
+        inputs.update({f"hsi_{r}": f"{base}/hsi/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors})
+    return inputs
+
+
+def metrics_solidity(wildcards):
+    """Rotor name -> solidity (the only aircraft-configuration slice the metrics depend on)."""
+    from nps.metrics import rotor_solidities
+
+    return rotor_solidities(aircraft_config(wildcards))
+
+
+rule metrics:
+    input:
+        unpack(metrics_signal_inputs),
+        trim=f"{RESULTS}/{{aircraft}}/{{segment}}/trim.parquet",
+        observers=f"{RESULTS}/{{aircraft}}/{{segment}}/observers/{{obsset}}.parquet",
+    output:
+        metrics=f"{RESULTS}/{{aircraft}}/{{segment}}/metrics/{{obsset}}_{{variant}}.parquet",
+        bands=f"{RESULTS}/{{aircraft}}/{{segment}}/metrics/{{obsset}}_{{variant}}_bands.parquet",
+        figure=report(
+            f"{RESULTS}/{{aircraft}}/{{segment}}/metrics/{{obsset}}_{{variant}}_spectrum.png",
+            caption="../report/metrics_spectrum.rst",
+            category="Spectra",
+            subcategory="{aircraft} {segment}",
+            labels={"aircraft": "{aircraft}", "segment": "{segment}", "observers": "{obsset}", "loads": "{variant}"},
+        ),
+    params:
+        rotors=lambda wildcards: rotor_names(wildcards.aircraft),
+        solidity=metrics_solidity,
+        atmosphere=config["atmosphere"],
+        broadband=config["models"]["broadband"],
+        absorption=config["models"]["absorption"],
+        hsi=config["models"]["hsi"],
+        harmonics=config["acoustics"]["bvispl_harmonics"],
+        code=nps_hash("metrics", "spectra", "broadband", "atmosphere", "plots/spectra"),
+    log:
+        log_path("metrics", "{aircraft}/{segment}/{obsset}_{variant}"),
+    benchmark:
+        bench_path("metrics", "{aircraft}/{segment}/{obsset}_{variant}")
+    threads: 1
+    resources:
+        mem_mb=1500,
+        runtime=10,
+    script:
+        "../scripts/metrics.py"
+
+
+ALL_TARGETS.extend(
+    f"{RESULTS}/{a}/{s}/metrics/{o}_{v}.parquet"
+    for a, s in campaign_pairs()
+    for o in observer_sets(s)
+    for v in variants(s)
+)
