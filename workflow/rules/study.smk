@@ -1,0 +1,150 @@
+# The study (thesis chapter 7): hemisphere maps, BVI hotspots and summary tables per aircraft.
+# Levels come from the hemisphere metrics of the variant with BVI wherever it was computed.
+
+MAP_SEGMENTS = {
+    "oaspl": lambda: figure_segments("map"),
+    "dba": lambda: figure_segments("bvi_map"),
+    "bvispl": lambda: figure_segments("bvi_map"),
+    "hsi_oaspl": lambda: figure_segments("hsi") if config["models"]["hsi"] else [],
+}
+
+
+wildcard_constraints:
+    kind="oaspl|dba|bvispl|hsi_oaspl",
+
+
+def best_variant(segment):
+    return variants(segment)[-1]
+
+
+def hemisphere_metrics(aircraft, segment):
+    return f"{RESULTS}/{aircraft}/{segment}/metrics/hemisphere_{best_variant(segment)}.parquet"
+
+
+def antitorque_rotors(aircraft):
+    return [r["name"] for r in CAMPAIGN.aircraft[aircraft]["rotors"] if r["role"] == "antitorque"]
+
+
+rule study_maps:
+    input:
+        lambda wc: {s: hemisphere_metrics(wc.aircraft, s) for s in MAP_SEGMENTS[wc.kind]()},
+    output:
+        report(
+            f"{RESULTS}/{{aircraft}}/figures/{{kind}}_maps.png",
+            caption="../report/study_maps.rst",
+            category="{aircraft}",
+            subcategory="Hemisphere maps",
+            labels={"aircraft": "{aircraft}", "figure": "{kind} maps"},
+        ),
+    params:
+        code=nps_hash("study", "plots/maps", "plots/study"),
+    log:
+        log_path("study_maps", "{aircraft}/{kind}"),
+    benchmark:
+        bench_path("study_maps", "{aircraft}/{kind}")
+    threads: 1
+    resources:
+        mem_mb=800,
+        runtime=5,
+    script:
+        "../scripts/study_maps.py"
+
+
+rule rotor_maps:
+    input:
+        signals=lambda wc: {
+            s: f"{RESULTS}/{wc.aircraft}/{s}/acoustics/hemisphere/{wc.rotor}_base.parquet" for s in figure_segments("map")[:2]
+        },
+        observers=lambda wc: f"{RESULTS}/{wc.aircraft}/{figure_segments('map')[0]}/observers/hemisphere.parquet",
+    output:
+        report(
+            f"{RESULTS}/{{aircraft}}/figures/oaspl_maps_{{rotor}}.png",
+            caption="../report/rotor_maps.rst",
+            category="{aircraft}",
+            subcategory="Hemisphere maps",
+            labels={"aircraft": "{aircraft}", "figure": "OASPL maps, rotor {rotor} alone"},
+        ),
+    params:
+        segments=lambda wc: figure_segments("map")[:2],
+        code=nps_hash("plots/maps", "plots/study"),
+    log:
+        log_path("rotor_maps", "{aircraft}/{rotor}"),
+    benchmark:
+        bench_path("rotor_maps", "{aircraft}/{rotor}")
+    threads: 1
+    resources:
+        mem_mb=1500,
+        runtime=5,
+    script:
+        "../scripts/rotor_maps.py"
+
+
+rule bvi_hotspot:
+    input:
+        metrics=f"{RESULTS}/{{aircraft}}/{{segment}}/metrics/hemisphere_bvi.parquet",
+        trim=f"{RESULTS}/{{aircraft}}/{{segment}}/trim.parquet",
+        base=lambda wc: [f"{RESULTS}/{wc.aircraft}/{wc.segment}/acoustics/hemisphere/{r}_base.parquet" for r in rotor_names(wc.aircraft)],
+        bvi=lambda wc: [f"{RESULTS}/{wc.aircraft}/{wc.segment}/acoustics/hemisphere/{r}_bvi.parquet" for r in rotor_names(wc.aircraft)],
+    output:
+        report(
+            f"{RESULTS}/{{aircraft}}/{{segment}}/figures/bvi_hotspot.png",
+            caption="../report/bvi_hotspot.rst",
+            category="{aircraft}",
+            subcategory="{segment}",
+            labels={"aircraft": "{aircraft}", "segment": "{segment}", "figure": "BVI hotspot"},
+        ),
+    params:
+        harmonics=config["acoustics"]["bvispl_harmonics"],
+        code=nps_hash("study", "plots/study", "spectra"),
+    log:
+        log_path("bvi_hotspot"),
+    benchmark:
+        bench_path("bvi_hotspot")
+    threads: 1
+    resources:
+        mem_mb=1500,
+        runtime=5,
+    script:
+        "../scripts/bvi_hotspot.py"
+
+
+rule summary:
+    input:
+        trims=lambda wc: [f"{RESULTS}/{wc.aircraft}/{s}/trim.parquet" for s in CAMPAIGN.segments],
+        loads=lambda wc: [f"{RESULTS}/{wc.aircraft}/{s}/loads/{r}_summary.parquet" for s in CAMPAIGN.segments for r in rotor_names(wc.aircraft)],
+        metrics=lambda wc: [f"{RESULTS}/{wc.aircraft}/{s}/metrics/hemisphere_{v}.parquet" for s in CAMPAIGN.segments for v in variants(s)],
+    output:
+        table=f"{RESULTS}/{{aircraft}}/summary.parquet",
+        csv=report(
+            f"{RESULTS}/{{aircraft}}/summary.csv",
+            caption="../report/summary.rst",
+            category="{aircraft}",
+            subcategory="Summary",
+            labels={"aircraft": "{aircraft}", "figure": "summary table"},
+        ),
+    params:
+        segments=CAMPAIGN.segments,
+        rotors=lambda wc: rotor_names(wc.aircraft),
+        variants={s: variants(s) for s in CAMPAIGN.segments},
+        benchmarks=f"{RESULTS}/benchmarks",
+        code=nps_hash("study"),
+    log:
+        log_path("summary", "{aircraft}"),
+    benchmark:
+        bench_path("summary", "{aircraft}")
+    threads: 1
+    resources:
+        mem_mb=800,
+        runtime=5,
+    script:
+        "../scripts/summary.py"
+
+
+ALL_TARGETS.extend(f"{RESULTS}/{a}/summary.parquet" for a in CAMPAIGN.aircraft)
+ALL_TARGETS.extend(f"{RESULTS}/{a}/figures/{k}_maps.png" for a in CAMPAIGN.aircraft for k in MAP_SEGMENTS if MAP_SEGMENTS[k]())
+ALL_TARGETS.extend(
+    f"{RESULTS}/{a}/figures/oaspl_maps_{r}.png" for a in CAMPAIGN.aircraft for r in antitorque_rotors(a) if figure_segments("map")
+)
+ALL_TARGETS.extend(
+    f"{RESULTS}/{a}/{s}/figures/bvi_hotspot.png" for a in CAMPAIGN.aircraft for s in figure_segments("bvi_map") if "bvi" in variants(s)
+)
