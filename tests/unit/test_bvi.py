@@ -55,21 +55,54 @@ def test_sears_function_values():
     assert np.all(np.diff(s) < 0)
 
 
+def _amplitude(x, n):
+    return 2 * abs(np.fft.rfft(x[:, 0])[n]) / x.shape[0]
+
+
 def test_unsteady_response_keeps_low_and_attenuates_high_harmonics():
-    """Each harmonic n is scaled by |S(n c / 2r)| (rel. 1e-9): a 1/rev field at r = 1.7 m,
-    c = 0.121 m (k = 0.036) keeps > 90 %, a 40/rev field (k = 1.42) about a third."""
+    """With U_T = Ωr (no forward speed) each harmonic n is scaled by |S(n c / 2r)| (rel. 1e-3,
+    table interpolation): a 1/rev field at r = 1.7 m, c = 0.121 m (k = 0.036) keeps > 90 %,
+    a 40/rev field (k = 1.42) about a third."""
     psi = 2 * np.pi * np.arange(360) / 360
-    r = np.array([1.7])
+    r, omega = 1.7, 109.12
+    ut = np.full((360, 1), omega * r)
+    low = bvi.unsteady_response(np.cos(psi)[:, None], ut, omega, 2.0, 0.121)
+    assert _amplitude(low, 1) == pytest.approx(abs(bvi.sears(0.121 / 3.4)), rel=1e-3)
+    assert _amplitude(low, 1) > 0.9
+    high = bvi.unsteady_response(np.cos(40 * psi)[:, None], ut, omega, 2.0, 0.121)
+    assert _amplitude(high, 40) == pytest.approx(abs(bvi.sears(40 * 0.121 / 3.4)), rel=1e-3)
+    assert 0.25 < _amplitude(high, 40) < 0.4
 
-    def amplitude(x, n):
-        return 2 * abs(np.fft.rfft(x[:, 0])[n]) / x.shape[0]
 
-    low = bvi.unsteady_response(np.cos(psi)[:, None], r, 0.121)
-    assert amplitude(low, 1) == pytest.approx(abs(bvi.sears(0.121 / 3.4)), rel=1e-9)
-    assert amplitude(low, 1) > 0.9
-    high = bvi.unsteady_response(np.cos(40 * psi)[:, None], r, 0.121)
-    assert amplitude(high, 40) == pytest.approx(abs(bvi.sears(40 * 0.121 / 3.4)), rel=1e-9)
-    assert 0.25 < amplitude(high, 40) < 0.4
+def test_unsteady_response_uses_local_in_plane_speed():
+    """Frozen coefficients: a pure 40/rev input at a station with U_T = Ωr (1 + 0.4 sin ψ)
+    comes out as Re[S(k(ψ)) e^{−ik(ψ)/2} e^{i40ψ}], k(ψ) = 40 c Ω / (2 U_T(ψ)) (abs. 1e-3,
+    exact Sears function), so the faster advancing section (ψ = 90°) is attenuated less than
+    the retreating one (ψ = 270°): local amplitude 0.39 vs 0.26 for r = 1.7 m, c = 0.121 m."""
+    psi = 2 * np.pi * np.arange(720) / 720
+    r, omega, c = 1.7, 109.12, 0.121
+    ut = (omega * r * (1 + 0.4 * np.sin(psi)))[:, None]
+    out = bvi.unsteady_response(np.cos(40 * psi)[:, None], ut, omega, 2.0, c)[:, 0]
+    k = 40 * c * omega / (2 * ut[:, 0])
+    expected = np.real(bvi.sears(k) * np.exp(-0.5j * k) * np.exp(40j * psi))
+    assert np.abs(out - expected).max() < 1e-3
+    local = np.abs(bvi.sears(k))
+    assert local[180] == pytest.approx(0.39, abs=0.01) and local[540] == pytest.approx(0.26, abs=0.01)
+
+
+def test_compressible_gust_response_magnitude():
+    """Compressibility scales the reduced frequency by 1/β² in the magnitude only: at M = 0.64
+    (β² = 0.5904) and k = 0.5, |H| = |S(0.847)| = 0.42 against the incompressible |S(0.5)| =
+    0.53 (Leishman's Sears values, within 0.01); the phase is the incompressible one; the
+    quasi-steady limit k → 0 is unchanged (the BET carries the Prandtl–Glauert factor)."""
+    beta_sq = 1 - 0.64**2
+    h_inc = bvi.gust_transfer(np.array([0.0, 0.5]))
+    h_com = bvi.gust_transfer(np.array([0.0, 0.5]), beta_sq)
+    assert abs(h_com[0]) == pytest.approx(1.0, abs=1e-9)
+    assert abs(h_inc[1]) == pytest.approx(0.526, abs=0.01)
+    assert abs(h_com[1]) == pytest.approx(abs(bvi.sears(0.5 / beta_sq)), rel=1e-3)
+    assert abs(h_com[1]) == pytest.approx(0.42, abs=0.01)
+    assert np.angle(h_com[1]) == pytest.approx(np.angle(h_inc[1]), abs=1e-12)
 
 
 def test_bvi_table_schema_and_no_retrim():

@@ -1,17 +1,35 @@
 """Descent sweep 0°–10° of the thesis Table 5.2 rotor (thesis Fig. 5.11: BVI strongest near
-6° descent, weak in level flight and beyond ≈ 8°).
+6° descent, little in level flight, gone again by ≈ 8°).
 
 Rotor: the bundled helicopter main rotor (config/aircraft/helicopter.yaml) at Table 5.2's
-μ_x = 0.23 and C_T = 0.0095, μ_z = −μ_x tan γ (Table 5.2: μ_z = 0.024 at 5.96°, thesis sign),
-trimmed by nps.bet, BVI loads with the model defaults (360 × 30 disk, 3-revolution wake).
+μ = 0.23 and C_T = 0.0095, trimmed by nps.bet (zero hub moments, so the tip-path plane is the
+shaft plane), BVI loads with the model defaults (360 × 30 disk, 3-revolution wake).
 
-BVI intensity: the largest |∂F_z/∂ψ| (N/m per rad) of the BVI loading's ≥ 10/rev content over
-the disk at r ≥ 0.5 R. Measured at the time of writing (relative to the maximum):
-γ = 0°: 0.61, 3°: 0.87, 5°: 0.92, 6°: 1.00, 7°: 0.91, 8°: 0.66, 10°: 0.20. The maximum lies
-in 5°–7° as in the thesis and the intensity falls steeply beyond 8°, but level flight keeps
-0.6 of the peak: the Beddoes inflow's reduced downwash at the front of the disk keeps the
-young vortices near the advancing blades at μ = 0.23 (docs/models/wake_bvi.md). The
-advancing side alone peaks at 4°, the retreating side at 6°.
+Disk attitude (trim-consistent, not the thesis' μ_z = μ tan γ, which leaves the disk parallel
+to the flight path): in steady flight at descent angle γ the rotor force balances the weight
+W = T and the fuselage drag D = ½ρV²f (f from the aircraft file) along the path, so the
+resultant is tilted forward of the vertical by τ_f = atan(D cos γ / (W − D sin γ)); the disk
+normal lies a further atan(H/T) ahead of the resultant (H the rotor's own in-plane drag from
+the BET, taken from a coarse 72 × 20 trim at the drag-only attitude: one fixed-point update).
+The free stream meets the disk at α = γ − τ_f − atan(H/T) (positive from below): α = −2.3° in
+level flight (the wake is blown below the disk), +3.8° at 6°; μ_x = μ cos α, μ_z = −μ sin α.
+
+BVI intensity (a BVISPL proxy from the loads alone): the energy over one revolution of the
+blade's ≥ 10/rev total normal-force rate,
+
+    I = Σ_ψ [ d/dψ ∫_{0.5R}^{R} F_z^{(≥10/rev)}(ψ, r) dr ]²,
+
+the sound power of the BVI band of a compact blade dipole radiating below the rotor. Parallel
+interactions (vortex along the span) load the whole blade at once and count fully; oblique
+ones (the level-flight advancing-side crossings) cancel along the span, as their noise does.
+Measured (relative to the maximum), γ = 0°: 0.06, 3°: 0.47, 4°: 0.77, 5°: 1.00, 6°: 0.94,
+7°: 0.66, 8°: 0.43, 10°: 0.13. Threshold for "small": ≤ 0.5 of the peak, i.e. at least 3 dB
+below it (the thesis describes 8° as resembling 2°–3°, here 0.43 vs 0.47 at 3°).
+
+Earlier measure (max |∂F_z/∂ψ| at any station, disk parallel to the path): 0.61 in level flight
+and 0.66 at 8°; with the trim-consistent tilt it peaks at 8° because single-station maxima come
+from retreating-side tip crossings (r = 0.99 R) that do not radiate coherently. Without the
+tilt (disk parallel to the path) the measure below peaks at 3° with 0.29 in level flight.
 """
 
 import numpy as np
@@ -21,45 +39,78 @@ from nps import bet, bvi, wake
 from nps.config import load_aircraft
 from nps.rotor import OperatingPoint, RotorGeometry
 
-ANGLES_DEG = (0, 3, 5, 6, 7, 8, 10)
+ANGLES_DEG = (0, 3, 4, 5, 6, 7, 8, 10)
+RHO, C0, OMEGA, MU, CT = 1.225, 340.3, 28.0, 0.23, 0.0095
 
 
-def _intensity(gamma_deg: float, geometry: RotorGeometry) -> float:
-    rho, c0, omega, mu_x, ct = 1.225, 340.3, 28.0, 0.23, 0.0095
+def _trimmed_disk(gamma_deg: float, geometry: RotorGeometry, drag_area_m2: float):
+    """Trim at the trim-consistent disk angle (module doc); returns (trim, trim row, α rad)."""
     radius = geometry.radius_m
-    mu_z = -mu_x * np.tan(np.radians(gamma_deg))
-    thrust = ct * rho * np.pi * radius**2 * (omega * radius) ** 2
-    op = OperatingPoint(omega_rad_s=omega, mu_x=mu_x, mu_y=0.0, mu_z=mu_z, density_kg_m3=rho,
-                        speed_of_sound_mps=c0, thrust_N=thrust)
-    trim = bet.trim_rotor(geometry, op, bet.DiskGrid(360, 30))
-    row = dict(n_blades=geometry.n_blades, radius_m=radius, omega_rad_s=omega, rotation_sign=1, mu_x=mu_x,
-               mu_y=0.0, mu_z=mu_z, density_kg_m3=rho, speed_of_sound_mps=c0)
-    res = bvi.bvi_loads(trim.disk, row, geometry, trim.totals.ct, wake.WakeModel(revolutions=3))
-    grid = bvi.disk_grid(res.disk)
-    fz = bvi.remove_low_harmonics(res.disk["fz_N_per_m"].to_numpy().reshape(grid.shape), 9)
-    slope = np.gradient(fz, grid.psi_rad, axis=0)
-    return float(np.abs(slope[:, grid.r_m >= 0.5 * radius]).max())
+    thrust = CT * RHO * np.pi * radius**2 * (OMEGA * radius) ** 2
+    gamma = np.radians(gamma_deg)
+    drag = 0.5 * RHO * (MU * OMEGA * radius) ** 2 * drag_area_m2
+    tau_f = np.arctan2(drag * np.cos(gamma), thrust - drag * np.sin(gamma))
+    h_over_t = 0.0
+    for grid in (bet.DiskGrid(72, 20), bet.DiskGrid(360, 30)):  # H/T (an integral) from a coarse trim
+        alpha = gamma - tau_f - np.arctan(h_over_t)
+        mu_x, mu_z = MU * np.cos(alpha), -MU * np.sin(alpha)
+        op = OperatingPoint(omega_rad_s=OMEGA, mu_x=mu_x, mu_y=0.0, mu_z=mu_z, density_kg_m3=RHO,
+                            speed_of_sound_mps=C0, thrust_N=thrust)
+        trim = bet.trim_rotor(geometry, op, grid)
+        h_over_t = trim.totals.h_force_N / trim.totals.thrust_N
+    row = dict(n_blades=geometry.n_blades, radius_m=radius, omega_rad_s=OMEGA, rotation_sign=1, mu_x=mu_x,
+               mu_y=0.0, mu_z=mu_z, density_kg_m3=RHO, speed_of_sound_mps=C0)
+    return trim, row, alpha
+
+
+def bvi_intensity(disk, radius_m: float) -> float:
+    """I = Σ_ψ (d/dψ ∫_{0.5R}^R F_z^{≥10/rev} dr)² ((N/rad)², module doc)."""
+    grid = bvi.disk_grid(disk)
+    fz = bvi.remove_low_harmonics(disk["fz_N_per_m"].to_numpy().reshape(grid.shape), 9)
+    dr = disk["dr_m"].to_numpy().reshape(grid.shape)[0]
+    outer = grid.r_m >= 0.5 * radius_m
+    blade_force = fz[:, outer] @ dr[outer]
+    return float(np.sum(np.gradient(blade_force, grid.psi_rad) ** 2))
 
 
 @pytest.fixture(scope="module")
 def sweep(repo_root):
-    geometry = RotorGeometry.from_config(load_aircraft(repo_root / "config/aircraft/helicopter.yaml")["rotors"][0])
-    values = np.array([_intensity(g, geometry) for g in ANGLES_DEG])
-    return dict(zip(ANGLES_DEG, values / values.max()))
+    aircraft = load_aircraft(repo_root / "config/aircraft/helicopter.yaml")
+    geometry = RotorGeometry.from_config(aircraft["rotors"][0])
+    values, alphas = [], []
+    for gamma in ANGLES_DEG:
+        trim, row, alpha = _trimmed_disk(gamma, geometry, float(aircraft["fuselage_drag_area_m2"]))
+        res = bvi.bvi_loads(trim.disk, row, geometry, trim.totals.ct, wake.WakeModel(revolutions=3))
+        values.append(bvi_intensity(res.disk, geometry.radius_m))
+        alphas.append(np.degrees(alpha))
+    values = np.array(values)
+    return dict(zip(ANGLES_DEG, values / values.max())), dict(zip(ANGLES_DEG, alphas))
+
+
+def test_disk_tilted_forward_in_level_flight(sweep):
+    """Trim-consistent attitude: in level flight the free stream enters the disk from above
+    (α = −2.3° ± 0.3°: D/W = 0.031 from f = 2 m², plus H/T ≈ 0.01); at 6° descent from below."""
+    _, alpha = sweep
+    assert alpha[0] == pytest.approx(-2.3, abs=0.3)
+    assert 3.0 < alpha[6] < 4.5
 
 
 def test_bvi_intensity_peaks_between_5_and_7_degrees(sweep):
-    peak = max(sweep, key=sweep.get)
-    assert 5 <= peak <= 7, sweep
+    rel, _ = sweep
+    peak = max(rel, key=rel.get)
+    assert 5 <= peak <= 7, rel
 
 
-def test_bvi_intensity_falls_beyond_8_degrees(sweep):
-    """Beyond 8° the wake is blown above the disk: intensity ≤ 0.75 of the peak at 8° and
-    ≤ 0.3 at 10° (measured 0.66 and 0.20)."""
-    assert sweep[8] <= 0.75 and sweep[10] <= 0.3, sweep
+def test_bvi_intensity_small_in_level_flight_and_beyond_8_degrees(sweep):
+    """Level flight, 8° and 10° at most half the peak intensity (≥ 3 dB below; module doc);
+    level flight, where the wake passes below the disk, under a tenth (measured 0.06)."""
+    rel, _ = sweep
+    assert rel[0] <= 0.1 and rel[8] <= 0.5 and rel[10] <= 0.5, rel
 
 
-def test_level_flight_below_peak(sweep):
-    """Level flight is below the 5°–7° levels (measured 0.61 of the peak; the thesis shows it
-    much weaker: a known shortfall of the prescribed wake, see the module docstring)."""
-    assert sweep[0] < 0.75 and sweep[0] < min(sweep[5], sweep[6], sweep[7]), sweep
+def test_bvi_intensity_rises_from_level_flight_to_the_peak(sweep):
+    """The intensity grows monotonically from level flight to 5° (0.06, 0.47, 0.77, 1.00) and
+    falls monotonically from 6° to 10°: one interaction regime, not scattered events."""
+    rel, _ = sweep
+    assert rel[0] < rel[3] < rel[4] < rel[5], rel
+    assert rel[6] > rel[7] > rel[8] > rel[10], rel

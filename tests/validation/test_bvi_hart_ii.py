@@ -5,12 +5,14 @@ tests/validation/hart_ii_case.py. Model defaults (A, B, C, D = 0.5, 1, 1.1, 0.85
 Sears response; 0/1-rev harmonics removed). Figures are written to $NPS_FIGURES_DIR when set
 (the copies in docs/figures/ were made that way).
 
-Measured at the time of writing (docs/models/wake_bvi.md):
-- advancing window 30°–80°: high-passed (≥ 10/rev) peak-to-peak 0.054 vs measured 0.022
-  (×2.5; quasi-steady lifting line ×7.4); cross-correlation 0.87 at a lag of −9°.
-- retreating window 280°–330°: 0.047 vs 0.035 (×1.3; quasi-steady ×3.2); correlation
-  0.77 at +7°.
-- PIV: mean miss distance 0.15 m (1.2 c), predicted vortices 0.095 m too low on average.
+Measured at the time of writing (docs/models/wake_bvi.md), Sears response with the local
+in-plane speed and compressible magnitude:
+- advancing window 30°–80°: high-passed (≥ 10/rev) peak-to-peak 0.045 vs measured 0.022
+  (×2.1; constant-speed Sears ×2.5, quasi-steady lifting line ×7.4); cross-correlation 0.87
+  at a lag of −9°.
+- retreating window 280°–330°: 0.039 vs 0.035 (×1.09; constant-speed Sears ×1.3,
+  quasi-steady ×3.3); correlation 0.77 at +7°.
+- PIV: mean miss distance 0.148 m (1.2 c), predicted vortices 0.094 m too low on average.
 """
 
 import os
@@ -53,9 +55,9 @@ def test_bvi_events_in_measured_windows(hart):
 
 def test_bvi_phase_and_amplitude(hart, hart_quasi_steady):
     """Phase: the high-passed model and measurement correlate with ρ ≥ 0.7 at a lag within
-    ±10° in both windows. Amplitude: peak-to-peak within a factor 3 of the measured one in
-    both windows with the Sears response, and closer to it than the quasi-steady lifting line
-    (the thesis model, which matched event locations only)."""
+    ±10° in both windows. Amplitude: peak-to-peak within a factor 2.5 of the measured one in
+    both windows with the unsteady response (measured ×2.1 and ×1.09), and closer to it than
+    the quasi-steady lifting line (the thesis model, which matched event locations only)."""
     pm, cm = h.measured_cn()
     for lo, hi in ((30, 80), (280, 330)):
         lag, rho = h.window_lag(hart.psi_deg, hart.cn_bvi, pm, cm, lo, hi)
@@ -63,7 +65,7 @@ def test_bvi_phase_and_amplitude(hart, hart_quasi_steady):
         _, p2p_meas, _ = h.window_metrics(pm, cm, lo, hi)
         _, p2p_model, _ = h.window_metrics(hart.psi_deg, hart.cn_bvi, lo, hi)
         _, p2p_qs, _ = h.window_metrics(hart.psi_deg, hart_quasi_steady.cn_bvi, lo, hi)
-        assert p2p_meas / 3 <= p2p_model <= 3 * p2p_meas, (lo, hi, p2p_model, p2p_meas)
+        assert p2p_meas / 2.5 <= p2p_model <= 2.5 * p2p_meas, (lo, hi, p2p_model, p2p_meas)
         assert abs(np.log(p2p_model / p2p_meas)) < abs(np.log(p2p_qs / p2p_meas))
 
 

@@ -5,9 +5,9 @@ C_T = 0.0095) trimmed by nps.bet on 360 × 50 and 720 × 50 disks; BVI increment
 model defaults and the wake segment equal to the disk step (1° vs 0.5°, 4 revolutions).
 
 Criteria (issue): the peak |ΔU_P| on the disk changes by < 5 % and no interaction band moves
-by more than one coarse step. Measured at the time of writing: peak 13.179 vs 13.179 m/s
-(2e-5 relative), all band crests within 1°, coarse vs fine at the common stations differ
-by at most 0.06 % of the peak.
+by more than one coarse step. Measured at the time of writing: peak 11.445 vs 11.488 m/s
+(0.4 % relative; local-U_T compressible Sears response), all band crests within 1°, coarse
+vs fine at the common stations differ by at most 0.06 % of the peak.
 """
 
 import numpy as np
