@@ -7,13 +7,17 @@ Per blade (docs/conventions.md for frames and signs):
   blade's direction of motion, the force on the fluid per node is (0, +fx, −fz)·dr
   (fx opposes the motion on the blade, so the blade pushes the air forward);
 * **thickness**, one of two models (:class:`ThicknessModel`):
-  - ``dual_compact`` (default, Isom / Yang–Brentner–Walsh): two lines at chord fractions
-    (0.13, 0.87) carrying ±ρ0 c0²·t(r)·dr along the chord (front line toward the leading edge,
-    rear line toward the trailing edge), radiated by the same dipole kernel as the loading: a
-    uniform pressure ρ0c² on the closed surface radiates exactly the thickness noise, and the
-    section is split at maximum thickness;
-  - ``compact_monopole``: the lifting-line nodes also carry the volume A·dr, A = 0.685·t·c
-    (NACA 00xx section area; ANOPP2 / AcousticAnalogies.jl model).
+  - ``dual_compact`` (default): two lines at chord fractions (0.13, 0.87) from the leading edge,
+    radiated by the same dipole kernel as the loading. Each line carries the force on the fluid
+    ±ρ0 (A/D) (v·e_c) v dr (front line +, rear line −), v the line's own velocity relative to the
+    medium (ground frame), e_c the chord direction toward the leading edge, A the section area,
+    D the line separation. In the compact limit of a section in steady motion this is exactly the
+    compact monopole ρ0 A dr ∂²/∂t²[1/(4π r|1−M_r|)]; at finite chord it is that monopole
+    averaged over a box-shaped chordwise thickness distribution (docs/models/acoustics.md has the
+    derivation and why the thesis' ±ρ0c²·t·dr along the chord was rejected);
+  - ``compact_monopole``: the lifting-line nodes also carry the volume A·dr
+    (ANOPP2 / AcousticAnalogies.jl model).
+  A = area_factor·t·c (0.685 for NACA 00xx sections).
 
 Geometry of a node at chord offset d (positive toward the leading edge from the pitch axis),
 radius r, flap β (up positive, hinge at ``hinge_offset_m`` = e), pitch θ (nose up), in the
@@ -26,7 +30,8 @@ de_t/dψ = −e_r, d/dψ of a vector with rotating components (a, b, c) has comp
 (a' − b, b' + a, c'): velocities, accelerations, jerks and force rates are this operator
 applied analytically for the rotation, with ψ-derivatives of the tabulated β, θ, fx, fz from
 periodic 6th-order central differences (exact for a rigid rotor with constant loads). Ground
-frame: y = hub + V t + R_GH q_H, v = V + Ω R_GH (Dq)_H, a = Ω² R_GH (D²q)_H, ...
+frame: y = hub + V t + R_GH q_H, v = V + Ω R_GH (Dq)_H, a = Ω² R_GH (D²q)_H, ...; the dual-compact
+line forces use v in rotating components, Ω (Dq) + (V_H·e_r, V_H·e_t, V_H·z_H), V_H = R_GHᵀ V.
 """
 
 from __future__ import annotations
@@ -50,7 +55,7 @@ class ThicknessModel:
     """Thickness-noise model: ``kind`` in {"dual_compact", "compact_monopole"}.
 
     ``chord_fractions``: dual-compact line positions from the leading edge (fractions of chord);
-    ``area_factor``: section area / (t·c) for the monopole (0.685 for NACA 00xx);
+    ``area_factor``: section area A / (t·c) (0.685 for NACA 00xx), used by both models;
     ``pitch_axis_chord``: lifting line / pitch axis from the leading edge (fraction of chord).
     """
 
@@ -65,6 +70,8 @@ class ThicknessModel:
         front, rear = self.chord_fractions
         if not 0.0 <= front < rear <= 1.0:
             raise AcousticsError(f"thickness model: chord_fractions {self.chord_fractions}, expected 0 <= front < rear <= 1")
+        if not 0.0 < self.area_factor <= 1.0:
+            raise AcousticsError(f"thickness model: area_factor {self.area_factor}, expected 0 < area_factor <= 1 (A/(t c))")
 
 
 def periodic_dpsi(values: np.ndarray, dpsi: float) -> np.ndarray:
@@ -103,13 +110,19 @@ def disk_arrays(disk: pd.DataFrame, what: str = "disk table") -> dict[str, np.nd
     return out
 
 
-def _blade_components(disk: Mapping[str, np.ndarray], model: ThicknessModel, hinge_offset_m: float,
-                      rho0: float, c0: float):
-    """Rotating-frame position and force-on-fluid components per line: lists of (n_psi, n_r, 3)."""
+def _blade_components(disk: Mapping[str, np.ndarray], model: ThicknessModel, hinge_offset_m: float, rho0: float,
+                      omega: float, air_rot: np.ndarray):
+    """Rotating-frame position and force-on-fluid components per line: lists of (n_psi, n_r, 3).
+
+    ``air_rot`` (n_psi, 1, 3): the hub's velocity relative to the medium (aircraft velocity) in
+    rotating components at each table azimuth; the dual-compact forces need the lines' own
+    velocities relative to the medium, Ω·(Dq) + air_rot.
+    """
     r, dr, chord, thick = disk["r_m"], disk["dr_m"], disk["chord_m"], disk["thickness_m"]
     theta, beta = disk["theta_rad"], disk["beta_rad"]
     e = hinge_offset_m
     sb, cb, st, ct = np.sin(beta), np.cos(beta), np.sin(theta), np.cos(theta)
+    area = model.area_factor * thick * chord
 
     def position(offset):
         return np.stack([e + (r - e) * cb - offset * st * sb, offset * ct, (r - e) * sb + offset * st * cb], axis=-1)
@@ -117,20 +130,25 @@ def _blade_components(disk: Mapping[str, np.ndarray], model: ThicknessModel, hin
     lines = [(position(np.zeros_like(r)), np.stack([np.zeros_like(r), disk["fx_N_per_m"] * dr, -disk["fz_N_per_m"] * dr], axis=-1),
               LOADING, np.zeros(r.shape[1]))]
     if model.kind == DUAL_COMPACT:
-        chord_dir = np.stack([-st * sb, ct, st * cb], axis=-1)
-        push = (rho0 * c0 * c0 * thick * dr)[..., None] * chord_dir
-        for fraction, sign in zip(model.chord_fractions, (1.0, -1.0)):
-            lines.append((position((model.pitch_axis_chord - fraction) * chord), sign * push, THICKNESS, np.zeros(r.shape[1])))
+        dpsi = 2.0 * np.pi / r.shape[0]
+        chord_dir = np.stack([-st * sb, ct, st * cb], axis=-1)  # e_c, toward the leading edge
+        front, rear = model.chord_fractions
+        strength = rho0 * area * dr / ((rear - front) * chord)  # ρ0 (A/D) dr, kg/m
+        for fraction, sign in ((front, 1.0), (rear, -1.0)):
+            q = position((model.pitch_axis_chord - fraction) * chord)
+            vel = omega * _rotating_derivative(q, dpsi) + air_rot
+            chordwise = np.einsum("prk,prk->pr", vel, chord_dir)
+            lines.append((q, (sign * strength * chordwise)[..., None] * vel, THICKNESS, np.zeros(r.shape[1])))
     else:
-        volume = model.area_factor * thick[0] * chord[0] * dr[0]
-        lines[0] = lines[0][:3] + (volume,)
+        lines[0] = lines[0][:3] + (area[0] * dr[0],)
     return lines
 
 
 def rotor_sources(disk: pd.DataFrame, motion: RotorMotion, *, thickness: ThicknessModel = ThicknessModel(),
                   hinge_offset_m: float = 0.0, rho0_kg_m3: float, c0_mps: float,
                   tau_range_s: tuple[float, float] | None = None) -> CompactSources:
-    """Compact source lines of one rotor in the ground frame.
+    """Compact source lines of one rotor in the ground frame (ρ0 in kg/m³; c0 in m/s, every line
+    must move subsonically relative to the medium).
 
     ``tau_range_s=None``: periodic sources, blade 0 over one revolution starting at τ = 0 (the
     other B − 1 blades are implied by symmetry: identical loads vs ψ). Otherwise all blades at
@@ -144,11 +162,21 @@ def rotor_sources(disk: pd.DataFrame, motion: RotorMotion, *, thickness: Thickne
     if not omega > 0:
         raise AcousticsError(f"trim row: omega_rad_s must be positive, got {omega}")
     period = 2.0 * np.pi / omega
-    lines = _blade_components(arrays, thickness, hinge_offset_m, rho0_kg_m3, c0_mps)
+    s = motion.rotation_sign
+    psi_table = 2.0 * np.pi * np.arange(n_psi) / n_psi
+    v_h = motion.r_gh.T @ np.asarray(motion.velocity_mps, dtype=float)
+    air_rot = np.stack([v_h[0] * np.cos(psi_table) + v_h[1] * s * np.sin(psi_table),
+                        -v_h[0] * np.sin(psi_table) + v_h[1] * s * np.cos(psi_table),
+                        np.full(n_psi, v_h[2])], axis=-1)[:, None, :]
+    lines = _blade_components(arrays, thickness, hinge_offset_m, rho0_kg_m3, omega, air_rot)
 
     pos_c, vel_c, acc_c, jerk_c, frc_c, frd_c, groups_d, volumes = [], [], [], [], [], [], [], []
     for q, g, group, volume in lines:
         d1 = _rotating_derivative(q, dpsi)
+        speed = float(np.linalg.norm(omega * d1 + air_rot, axis=-1).max())
+        if not speed < c0_mps:
+            raise AcousticsError(f"disk table: a {group} line moves at {speed:.1f} m/s relative to the air, not below "
+                                 f"c0 = {c0_mps} m/s; the compact F1A needs subsonic sources")
         d2 = _rotating_derivative(d1, dpsi)
         d3 = _rotating_derivative(d2, dpsi)
         pos_c.append(q)
@@ -174,7 +202,6 @@ def rotor_sources(disk: pd.DataFrame, motion: RotorMotion, *, thickness: Thickne
         steps = np.arange(int(np.floor(tau_range_s[0] / period * n_psi)), int(np.ceil(tau_range_s[1] / period * n_psi)) + 1)
         blades = list(range(n_blades))
     tau = steps * period / n_psi
-    s = motion.rotation_sign
     r_gh = motion.r_gh
     out = [[] for _ in range(6)]
     for k in blades:

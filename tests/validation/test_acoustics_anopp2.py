@@ -9,7 +9,8 @@ Criterion (the source project's): max |error| over the ANOPP2 window (≈ four b
 1 % of the ANOPP2 peak-to-peak, for the loading (dipole) and the compact-monopole thickness. The
 windmilling 200 rpm, −45° cases need 4.5 % for the loading (the source project's own allowance;
 an independent re-implementation reaches 3.7 % / 4.4 % there too). The dual-compact thickness
-(two lines at 13 %/87 % chord, t = area/(0.685 c)) is compared with the monopole and reported.
+(two lines at 13 %/87 % chord, ±ρ0 (A/D)(v·e_c) v dr, A = the element area, D = 0.74 c) is
+compared with ANOPP2's compact monopole on all 44 cases.
 """
 
 import numpy as np
@@ -32,27 +33,30 @@ def _sources(data_dir, nn, thickness):
     for k in range(B):
         phi = 2 * np.pi * k / B + omega * tau
         for e in range(r.size):
-            # dual compact: lines ahead/behind the element along the motion direction (−cos φ, −sin φ)
+            # dual compact, lines along the in-plane motion direction e_c = (−cos φ, −sin φ, 0). "dual": lines at 13 %/87 % chord with the element (ANOPP2's monopole) at the quarter chord, as
+            # nps.sources places them; "dual_centred": the same pair centred on the element
             lines = [(0.0, 1.0, "loading")]
-            if thickness == "dual":
-                t = area[e] / (0.685 * chord[e])
-                lines += [((0.25 - 0.13) * chord[e], 1.0, "thickness"), ((0.25 - 0.87) * chord[e], -1.0, "thickness")]
+            if thickness.startswith("dual"):
+                centre = 0.0 if thickness == "dual_centred" else (0.25 - 0.5) * chord[e]
+                lines += [(centre + 0.37 * chord[e], 1.0, "thickness"), (centre - 0.37 * chord[e], -1.0, "thickness")]
             for offset, sign, group in lines:
                 x = -r[e] * np.sin(phi) - offset * np.cos(phi)
                 y = r[e] * np.cos(phi) - offset * np.sin(phi)
+                vel = (-omega * y, omega * x, np.full_like(tau, V_HUB))
                 frame = {
                     "node": node, "group": group, "time_s": tau, "x_m": x, "y_m": y, "z_m": V_HUB * tau,
-                    "vx_mps": -omega * y, "vy_mps": omega * x, "vz_mps": np.full_like(tau, V_HUB),
+                    "vx_mps": vel[0], "vy_mps": vel[1], "vz_mps": vel[2],
                 }
                 if group == "loading":
                     frame.update(fx_N=-tp[e] * np.cos(phi) * dr[e], fy_N=-tp[e] * np.sin(phi) * dr[e], fz_N=np.full_like(tau, -np_[e] * dr[e]))
                     if thickness == "monopole":
                         frame["volume_m3"] = np.full_like(tau, area[e] * dr[e])
-                    elif thickness == "dual":
+                    else:
                         frame["volume_m3"] = np.zeros_like(tau)
                 else:
-                    push = sign * RHO0 * C0**2 * t * dr[e]
-                    frame.update(fx_N=-push * np.cos(phi), fy_N=-push * np.sin(phi), fz_N=np.zeros_like(tau), volume_m3=np.zeros_like(tau))
+                    # force on the fluid ±ρ0 (A/D)(v·e_c) v dr (nps.sources, docs/models/acoustics.md)
+                    strength = sign * RHO0 * area[e] / ((0.87 - 0.13) * chord[e]) * dr[e] * (-vel[0] * np.cos(phi) - vel[1] * np.sin(phi))
+                    frame.update(fx_N=strength * vel[0], fy_N=strength * vel[1], fz_N=strength * vel[2], volume_m3=np.zeros_like(tau))
                 frames.append(pd.DataFrame(frame))
                 node += 1
     return pd.concat(frames, ignore_index=True)
@@ -83,23 +87,40 @@ def test_anopp2_compact_monopole_and_loading(data_dir, nn, below, moving):
     assert err["loading"] < (0.045 if (nn == 1 and below) else 0.01)
 
 
-def test_anopp2_dual_compact_thickness_vs_monopole(data_dir):
-    """Dual compact (±ρ0c²·t·dr lines, design-notes) vs ANOPP2's compact monopole: measured and printed.
+def _check_dual_compact(data_dir, cases):
+    """Dual compact vs ANOPP2's compact monopole on ``cases``.
 
-    For a compact section moving along its chord at speed U the two lines radiate
-    ρ0c²·t·D·dr ∂²G/∂y_c² = ρ0 (t·D·dr)(c/U)² ∂²G/∂t², i.e. the monopole times (tD/A)/M² (D = 0.74 c,
-    A = 0.685 t c): the same waveform, scaled by 1/M². Checked here: correlation with the ANOPP2
-    thickness pulse > 0.99 and ratio·M_tip² constant within 3 % at 200–600 rpm (measured ratios 1168, 292,
-    130: the dual-compact model with ρ0c² is not valid at these low tip Mach numbers 0.07–0.22;
-    see docs/models/acoustics.md). The loading is unaffected (< 1 %).
+    The dual-compact force law has the compact monopole as its compact limit (exact for a section
+    in steady rotation; docs/models/acoustics.md). Two layouts:
+    * pair centred on the element (where ANOPP2's monopole sits): max |difference| < 1 % of the
+      ANOPP2 peak-to-peak, 2.5 % at 200 rpm (there the axial flight speed is 0.2 of the tip speed and
+      the O(V/U) term of a pair separated across the helical path shows). Measured ≤ 0.98 %, 2.4 %.
+    * as nps.sources places it (13 %/87 % chord, element at 25 %): the box centre lies a quarter
+      chord behind the monopole, a pure time shift of ≈ c/(4U); peak-to-peak within 3 % (measured
+      0.997–1.026) and max |difference| < 9 % of peak-to-peak (measured 4.7–8.1 %, the shift).
+    The loading is unaffected. The thesis' ±ρ0c²·t·dr lines were 1168× (200 rpm) … 4.5× (2200 rpm) the
+    monopole's peak-to-peak here.
     """
-    scaled = []
-    for nn in (1, 2, 3):
-        err, p, ref = _run(data_dir, nn, False, False, "dual")
-        ratio = np.ptp(p["thickness"]) / np.ptp(ref[:, 1])
-        m_tip = 200 * nn * 2 * np.pi / 60 * 1.1684 / C0
-        print(f"dual compact {200 * nn} rpm in plane: p2p ratio to ANOPP2 monopole {ratio:.1f}, ratio*M_tip^2 {ratio * m_tip**2:.4f}")
-        assert np.corrcoef(p["thickness"], ref[:, 1])[0, 1] > 0.99
-        assert err["loading"] < 0.01
-        scaled.append(ratio * m_tip**2)
-    assert np.ptp(scaled) / np.mean(scaled) < 0.03
+    worst = {"dual": 0.0, "dual_centred": 0.0}
+    for nn, below, moving in cases:
+        for layout, tolerance in (("dual_centred", 0.025 if nn == 1 else 0.01), ("dual", 0.09)):
+            err, p, ref = _run(data_dir, nn, below, moving, layout)
+            gap = np.abs(p["thickness"] - ref[:, 1]).max() / np.ptp(ref[:, 1])
+            ratio = np.ptp(p["thickness"]) / np.ptp(ref[:, 1])
+            print(f"{layout} {200 * nn} rpm {'-45' if below else '0'} deg {'moving' if moving else 'fixed'}: "
+                  f"max |dual - ANOPP2 monopole| / p2p = {gap:.4f}, p2p ratio {ratio:.4f}")
+            worst[layout] = max(worst[layout], gap)
+            assert gap < tolerance
+            assert abs(ratio - 1) < 0.03
+    print(f"dual compact vs ANOPP2 monopole, worst of {len(cases)} cases: {worst}")
+
+
+@pytest.mark.slow
+def test_anopp2_dual_compact_thickness_vs_monopole_all_cases(data_dir):
+    """All 44 cases (≈ 30 s), criteria of :func:`_check_dual_compact`."""
+    _check_dual_compact(data_dir, CASES)
+
+
+def test_anopp2_dual_compact_thickness_vs_monopole(data_dir):
+    """Fast subset: 200, 1200, 2200 rpm in plane and 200 rpm −45° (the extremes of the gaps), fixed observer."""
+    _check_dual_compact(data_dir, [(1, False, False), (6, False, False), (11, False, False), (1, True, False)])
