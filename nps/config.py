@@ -195,6 +195,7 @@ def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", 
             problems.append((f"campaign.segments[{index}]", f"expected one of the mission's segments {all_ids}, got '{segment_id}'"))
     segment_lists = {f"figures.{key}": value for key, value in config["figures"].items()}
     segment_lists["models.bvi_segments"] = config["models"].get("bvi_segments", [])
+    segment_lists["models.hsi_segments"] = config["models"].get("hsi_segments", [])
     for where, listed in segment_lists.items():
         for index, segment_id in enumerate(listed):
             if segment_id not in all_ids:

@@ -20,7 +20,7 @@ rule bvi:
         log_path("bvi", "{aircraft}/{segment}/{rotor}"),
     benchmark:
         bench_path("bvi", "{aircraft}/{segment}/{rotor}")
-    threads: 2
+    threads: 1
     resources:
         mem_mb=1500,
         runtime=5,
@@ -61,5 +61,5 @@ if config["models"]["bvi"]:
         for a in CAMPAIGN.aircraft
         for s in bvi_segments()
         for r in rotor_names(a)
-        for kind in (f"bvi/{r}.parquet",) + ((f"figures/bvi_{r}.png",) if s in figure_segments("disk") else ())
+        for kind in (f"bvi/{r}.parquet",) + ((f"figures/bvi_{r}.png",) if s in figure_segments("disk") and r in figure_rotors(a) else ())
     )

@@ -63,6 +63,19 @@ def bvi_segments():
     return [s for s in CAMPAIGN.segments if s in config["models"].get("bvi_segments", CAMPAIGN.segments)]
 
 
+def hsi_segments():
+    """Segments whose signals get the HSI post-processing (all when not listed)."""
+    if not config["models"]["hsi"]:
+        return []
+    return [s for s in CAMPAIGN.segments if s in config["models"].get("hsi_segments", CAMPAIGN.segments)]
+
+
+def figure_rotors(aircraft):
+    """Rotors drawn in per-rotor figures: all of a one- or two-rotor aircraft, else the first."""
+    names = rotor_names(aircraft)
+    return names if len(names) <= 2 else names[:1]
+
+
 def variants(segment):
     """Load variants radiated in a segment: the trimmed loads, plus BVI loads where BVI is on."""
     return ["base", "bvi"] if segment in bvi_segments() else ["base"]
@@ -84,3 +97,63 @@ def log_path(stage, suffix="{aircraft}/{segment}"):
 
 def bench_path(stage, suffix="{aircraft}/{segment}"):
     return f"{RESULTS}/benchmarks/{stage}/{suffix}.tsv"
+
+
+# used by hsi.smk
+def hsi_figure_inputs(wildcards):
+    """Unprocessed and HSI signals of every rotor of the aircraft for one observer set."""
+    base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
+    rotors = rotor_names(wildcards.aircraft)
+    inputs = {f"signal_{r}": f"{base}/acoustics/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors}
+    inputs.update({f"hsi_{r}": f"{base}/hsi/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors})
+    return inputs
+
+
+# used by metrics.smk
+def metrics_signal_inputs(wildcards):
+    """Pressure signals of every rotor of the aircraft (and their HSI-processed versions)."""
+    base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
+    rotors = rotor_names(wildcards.aircraft)
+    inputs = {
+        f"signal_{r}": f"{base}/acoustics/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors
+    }
+    if wildcards.segment in hsi_segments():
+        inputs.update({f"hsi_{r}": f"{base}/hsi/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors})
+    return inputs
+
+
+# used by metrics.smk
+def metrics_solidity(wildcards):
+    """Rotor name -> solidity (the only aircraft-configuration slice the metrics depend on)."""
+    from nps.metrics import rotor_solidities
+
+    return rotor_solidities(aircraft_config(wildcards))
+
+
+# used by study.smk
+MAP_SEGMENTS = {
+    "oaspl": lambda: figure_segments("map"),
+    "dba": lambda: figure_segments("bvi_map"),
+    "bvispl": lambda: figure_segments("bvi_map"),
+    "hsi_oaspl": lambda: [s for s in figure_segments("hsi") if s in hsi_segments()],
+}
+
+
+# used by study.smk
+wildcard_constraints:
+    kind="oaspl|dba|bvispl|hsi_oaspl",
+
+
+# used by study.smk
+def best_variant(segment):
+    return variants(segment)[-1]
+
+
+# used by study.smk
+def hemisphere_metrics(aircraft, segment):
+    return f"{RESULTS}/{aircraft}/{segment}/metrics/hemisphere_{best_variant(segment)}.parquet"
+
+
+# used by study.smk
+def antitorque_rotors(aircraft):
+    return [r["name"] for r in CAMPAIGN.aircraft[aircraft]["rotors"] if r["role"] == "antitorque"]

@@ -17,21 +17,12 @@ rule hsi:
         log_path("hsi", "{aircraft}/{segment}/{obsset}/{rotor}_{variant}"),
     benchmark:
         bench_path("hsi", "{aircraft}/{segment}/{obsset}/{rotor}_{variant}")
-    threads: 2
+    threads: 1
     resources:
         mem_mb=1500,
         runtime=5,
     script:
         "../scripts/hsi.py"
-
-
-def hsi_figure_inputs(wildcards):
-    """Unprocessed and HSI signals of every rotor of the aircraft for one observer set."""
-    base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
-    rotors = rotor_names(wildcards.aircraft)
-    inputs = {f"signal_{r}": f"{base}/acoustics/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors}
-    inputs.update({f"hsi_{r}": f"{base}/hsi/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors})
-    return inputs
 
 
 rule hsi_figure:
@@ -61,18 +52,19 @@ rule hsi_figure:
         "../scripts/hsi_figure.py"
 
 
-if config["models"]["hsi"]:
-    ALL_TARGETS.extend(
-        f"{RESULTS}/{a}/{s}/hsi/{o}/{r}_{v}.parquet"
-        for a, s in campaign_pairs()
-        for o in observer_sets(s)
-        for r in rotor_names(a)
-        for v in variants(s)
-    )
-    ALL_TARGETS.extend(
-        f"{RESULTS}/{a}/{s}/figures/hsi_{o}_{v}.png"
-        for a, s in campaign_pairs()
-        for o in observer_sets(s)
-        if config["observer_sets"][o]["kind"] == "points_ahead"
-        for v in variants(s)
-    )
+ALL_TARGETS.extend(
+    f"{RESULTS}/{a}/{s}/hsi/{o}/{r}_{v}.parquet"
+    for a in CAMPAIGN.aircraft
+    for s in hsi_segments()
+    for o in observer_sets(s)
+    for r in rotor_names(a)
+    for v in variants(s)
+)
+ALL_TARGETS.extend(
+    f"{RESULTS}/{a}/{s}/figures/hsi_{o}_{v}.png"
+    for a in CAMPAIGN.aircraft
+    for s in hsi_segments()
+    for o in observer_sets(s)
+    if config["observer_sets"][o]["kind"] == "points_ahead"
+    for v in variants(s)
+)

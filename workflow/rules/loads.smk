@@ -54,5 +54,5 @@ rule loads_disk_figure:
 
 ALL_TARGETS.extend(f"{RESULTS}/{a}/{s}/loads/{r}.parquet" for a, s in campaign_pairs() for r in rotor_names(a))
 ALL_TARGETS.extend(
-    f"{RESULTS}/{a}/{s}/figures/disk_{r}.png" for a in CAMPAIGN.aircraft for s in figure_segments("disk") for r in rotor_names(a)
+    f"{RESULTS}/{a}/{s}/figures/disk_{r}.png" for a in CAMPAIGN.aircraft for s in figure_segments("disk") for r in figure_rotors(a)
 )

@@ -3,25 +3,6 @@
 # broadband, ISO 9613-1 absorption when the models are on).
 
 
-def metrics_signal_inputs(wildcards):
-    """Pressure signals of every rotor of the aircraft (and their HSI-processed versions)."""
-    base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
-    rotors = rotor_names(wildcards.aircraft)
-    inputs = {
-        f"signal_{r}": f"{base}/acoustics/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors
-    }
-    if config["models"]["hsi"]:
-        inputs.update({f"hsi_{r}": f"{base}/hsi/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors})
-    return inputs
-
-
-def metrics_solidity(wildcards):
-    """Rotor name -> solidity (the only aircraft-configuration slice the metrics depend on)."""
-    from nps.metrics import rotor_solidities
-
-    return rotor_solidities(aircraft_config(wildcards))
-
-
 rule metrics:
     input:
         unpack(metrics_signal_inputs),
@@ -43,7 +24,7 @@ rule metrics:
         atmosphere=config["atmosphere"],
         broadband=config["models"]["broadband"],
         absorption=config["models"]["absorption"],
-        hsi=config["models"]["hsi"],
+        hsi=lambda wildcards: wildcards.segment in hsi_segments(),
         harmonics=config["acoustics"]["bvispl_harmonics"],
         code=nps_hash("metrics", "spectra", "broadband", "atmosphere", "plots/spectra"),
     log:

@@ -1,33 +1,9 @@
 # The study (thesis chapter 7): hemisphere maps, BVI hotspots and summary tables per aircraft.
 # Levels come from the hemisphere metrics of the variant with BVI wherever it was computed.
 
-MAP_SEGMENTS = {
-    "oaspl": lambda: figure_segments("map"),
-    "dba": lambda: figure_segments("bvi_map"),
-    "bvispl": lambda: figure_segments("bvi_map"),
-    "hsi_oaspl": lambda: figure_segments("hsi") if config["models"]["hsi"] else [],
-}
-
-
-wildcard_constraints:
-    kind="oaspl|dba|bvispl|hsi_oaspl",
-
-
-def best_variant(segment):
-    return variants(segment)[-1]
-
-
-def hemisphere_metrics(aircraft, segment):
-    return f"{RESULTS}/{aircraft}/{segment}/metrics/hemisphere_{best_variant(segment)}.parquet"
-
-
-def antitorque_rotors(aircraft):
-    return [r["name"] for r in CAMPAIGN.aircraft[aircraft]["rotors"] if r["role"] == "antitorque"]
-
-
 rule study_maps:
     input:
-        lambda wc: {s: hemisphere_metrics(wc.aircraft, s) for s in MAP_SEGMENTS[wc.kind]()},
+        unpack(lambda wc: {s: hemisphere_metrics(wc.aircraft, s) for s in MAP_SEGMENTS[wc.kind]()}),
     output:
         report(
             f"{RESULTS}/{{aircraft}}/figures/{{kind}}_maps.png",
@@ -52,9 +28,9 @@ rule study_maps:
 
 rule rotor_maps:
     input:
-        signals=lambda wc: {
-            s: f"{RESULTS}/{wc.aircraft}/{s}/acoustics/hemisphere/{wc.rotor}_base.parquet" for s in figure_segments("map")[:2]
-        },
+        signals=lambda wc: [
+            f"{RESULTS}/{wc.aircraft}/{s}/acoustics/hemisphere/{wc.rotor}_base.parquet" for s in figure_segments("map")[:2]
+        ],
         observers=lambda wc: f"{RESULTS}/{wc.aircraft}/{figure_segments('map')[0]}/observers/hemisphere.parquet",
     output:
         report(
@@ -87,7 +63,7 @@ rule bvi_hotspot:
         bvi=lambda wc: [f"{RESULTS}/{wc.aircraft}/{wc.segment}/acoustics/hemisphere/{r}_bvi.parquet" for r in rotor_names(wc.aircraft)],
     output:
         report(
-            f"{RESULTS}/{{aircraft}}/{{segment}}/figures/bvi_hotspot.png",
+            f"{RESULTS}/{{aircraft}}/{{segment}}/figures/hotspot_bvi.png",
             caption="../report/bvi_hotspot.rst",
             category="{aircraft}",
             subcategory="{segment}",
@@ -146,5 +122,5 @@ ALL_TARGETS.extend(
     f"{RESULTS}/{a}/figures/oaspl_maps_{r}.png" for a in CAMPAIGN.aircraft for r in antitorque_rotors(a) if figure_segments("map")
 )
 ALL_TARGETS.extend(
-    f"{RESULTS}/{a}/{s}/figures/bvi_hotspot.png" for a in CAMPAIGN.aircraft for s in figure_segments("bvi_map") if "bvi" in variants(s)
+    f"{RESULTS}/{a}/{s}/figures/hotspot_bvi.png" for a in CAMPAIGN.aircraft for s in figure_segments("bvi_map") if "bvi" in variants(s)
 )

@@ -61,5 +61,5 @@ if config["models"]["bvi"]:
         for a in CAMPAIGN.aircraft
         for s in bvi_segments()
         for r in rotor_names(a)
-        for kind in (f"wake/{r}.parquet",) + ((f"figures/wake_{r}.png",) if s in figure_segments("disk") else ())
+        for kind in (f"wake/{r}.parquet",) + ((f"figures/wake_{r}.png",) if s in figure_segments("disk") and r in figure_rotors(a) else ())
     )

@@ -2,10 +2,13 @@
 
 from contextlib import redirect_stderr
 
+import numba
+
 from nps.cli.bvi import run
 from nps.wake import WakeModel
 
 with open(snakemake.log[0], "w") as log, redirect_stderr(log):
+    numba.set_num_threads(max(1, min(snakemake.threads, numba.config.NUMBA_NUM_THREADS)))
     p = snakemake.params
     w = snakemake.wildcards
     model = WakeModel.from_config(p.wake, p.revolutions, int(p.steps_per_rev))

@@ -2,10 +2,13 @@
 
 from contextlib import redirect_stderr
 
+import numba
+
 from nps.hsi import OBSERVER_COLUMNS, SIGNAL_COLUMNS, process
 from nps.io import read_table, write_table
 
 with open(snakemake.log[0], "w") as log, redirect_stderr(log):
+    numba.set_num_threads(max(1, min(snakemake.threads, numba.config.NUMBA_NUM_THREADS)))
     w = snakemake.wildcards
     trim = read_table(snakemake.input.trim, required=("rotor",))
     row = trim[trim["rotor"] == w.rotor]
