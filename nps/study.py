@@ -85,8 +85,7 @@ def segment_summary(
         row[f"max_{label}_db"] = spot["value"]
         row[f"max_{label}_azimuth_deg"] = spot["azimuth_deg"]
         row[f"max_{label}_elevation_deg"] = spot["elevation_deg"]
-    if variant == "bvi":
-        row["max_bvispl_without_bvi_db"] = hotspot(metrics["base"], "bvispl_db")["value"]
+    row["max_bvispl_without_bvi_db"] = hotspot(metrics["base"], "bvispl_db")["value"]
     for stage in STAGES:
         row[f"wall_{stage}_s"] = float(wall_times_s.get(stage, 0.0))
     return row
