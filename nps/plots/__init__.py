@@ -1,1 +1,16 @@
 """Figures: one module per figure family; every function takes arrays or tables and a path."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+
+def save_figure(fig, path, dpi: int = 110) -> Path:
+    """Write ``fig`` to ``path`` (parents created), close it and return the path."""
+    import matplotlib.pyplot as plt
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+    return path

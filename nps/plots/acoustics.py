@@ -18,6 +18,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+from nps.plots import save_figure  # noqa: E402
 import pandas as pd  # noqa: E402
 
 from nps.frames import observer_direction  # noqa: E402
@@ -104,8 +106,4 @@ def pressure_histories(signals_by_rotor: Mapping[str, pd.DataFrame], observers: 
     axes[-1, 0].set_xlabel("time [ms]")
     fig.suptitle(title + (f" ({', '.join(signals_by_rotor)})" if title else ""), fontsize=10)
     fig.tight_layout()
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)

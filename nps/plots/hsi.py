@@ -12,6 +12,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from nps.plots import save_figure  # noqa: E402
+
 from nps.hsi import HsiIntermediate  # noqa: E402
 
 STEP_TITLES = ("original", "amplified (eq. 6.1)", "sheared (eq. 6.3-6.6)", "shock-fitted (equal area)")
@@ -37,11 +39,7 @@ def plot_intermediate_grid(cases: Mapping[str, tuple], path) -> Path:
     for ax in axes[-1]:
         ax.set_xlabel("time [ms]")
     fig.tight_layout()
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
 
 
 def plot_intermediate(inter: HsiIntermediate, path) -> Path:
@@ -65,11 +63,7 @@ def plot_observer_histories(histories: Mapping[str, tuple[np.ndarray, np.ndarray
     axes[0, 0].legend(loc="lower right", fontsize=7)
     axes[-1, 0].set_xlabel("time [ms]")
     fig.tight_layout()
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
 
 
 

@@ -16,6 +16,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
+from nps.plots import save_figure
+
 
 def map_axis_deg(azimuth_deg) -> np.ndarray:
     """Horizontal map coordinate: (360° − azimuth) so that 180° (ahead) is at the centre and
@@ -81,5 +83,4 @@ def map_panels(panels, path, *, suptitle="", colour_label="OASPL (dB re 20 µPa)
         ax.set_visible(False)
     fig.suptitle(suptitle)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path)

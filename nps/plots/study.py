@@ -9,6 +9,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
+
+from nps.plots import save_figure
 import pandas as pd
 
 from nps.plots.maps import map_panels
@@ -99,5 +101,4 @@ def bvi_hotspot_figure(aircraft: str, segment: str, spot: Mapping[str, float], b
     fig.suptitle(f"{aircraft} {segment}: BVISPL hotspot, az {spot['azimuth_deg']:.0f}°, el {spot['elevation_deg']:.0f}° "
                  f"(observer {spot['observer']}), one revolution")
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path)
