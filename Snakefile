@@ -1,4 +1,4 @@
-# NPS study workflow: trim -> loads -> wake -> bvi -> acoustics -> hsi -> metrics -> figures.
+# NPS study workflow: trim -> loads -> wake (+ BVI loads) -> acoustics -> hsi -> metrics -> figures.
 # `snakemake -j2 all` runs the campaign of config/config.yaml; `snakemake --report report.html`
 # builds the HTML report. Rules live in workflow/rules/, one file per stage.
 import os
@@ -29,8 +29,8 @@ rule all:
 include: "workflow/rules/trim.smk"
 include: "workflow/rules/loads.smk"
 include: "workflow/rules/wake.smk"
-include: "workflow/rules/bvi.smk"
 include: "workflow/rules/acoustics.smk"
 include: "workflow/rules/hsi.smk"
 include: "workflow/rules/metrics.smk"
+include: "workflow/rules/figures.smk"
 include: "workflow/rules/study.smk"

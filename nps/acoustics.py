@@ -678,7 +678,7 @@ def signals_table(ids: np.ndarray, groups, pressure: np.ndarray, grid: TimeGrid,
     n_obs, n_grp, n_t = pressure.shape
     return pd.DataFrame({
         "observer": np.repeat(np.asarray(ids, dtype=np.int32), n_grp * n_t),
-        "group": np.tile(np.repeat(np.array(groups, dtype=object), n_t), n_obs),
+        "group": pd.Categorical.from_codes(np.tile(np.repeat(np.arange(n_grp), n_t), n_obs), categories=groups),
         "time_s": np.tile(grid.times_s, n_obs * n_grp),
         "p_Pa": pressure.reshape(-1),
     })

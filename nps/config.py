@@ -196,6 +196,7 @@ def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", 
     segment_lists = {f"figures.{key}": value for key, value in config["figures"].items()}
     segment_lists["models.bvi_segments"] = config["models"].get("bvi_segments", [])
     segment_lists["models.hsi_segments"] = config["models"].get("hsi_segments", [])
+    segment_lists["models.without_bvi_segments"] = config["models"].get("without_bvi_segments", [])
     for where, listed in segment_lists.items():
         for index, segment_id in enumerate(listed):
             if segment_id not in all_ids:

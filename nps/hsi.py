@@ -42,6 +42,7 @@ import numpy as np
 import pandas as pd
 from numba import njit, prange
 
+from nps.io import SIGNAL_COLUMNS, signal_arrays
 from nps.rotor import RotorMotion
 
 #: Calibration distance of eq. 6.5 in rotor radii (Baeder et al. in-plane observer, Table 6.1).
@@ -51,7 +52,6 @@ MACH_SAMPLES_PER_REV = 720
 #: Relative tolerance below which a pressure jump in the fitted signal is not a shock.
 _JUMP_RTOL = 1e-10
 
-SIGNAL_COLUMNS = ("observer", "group", "time_s", "p_Pa")
 OBSERVER_COLUMNS = ("observer", "x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps")
 
 
@@ -627,31 +627,8 @@ def _grid_period(t: np.ndarray) -> float:
 
 def _signal_matrix(signals: pd.DataFrame, groups=("thickness", "loading")) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(observer ids, time grid, sum over the groups of p (n_obs, N)) from a signal table."""
-    missing = [c for c in SIGNAL_COLUMNS if c not in signals.columns]
-    if missing:
-        raise ValueError(f"pressure signals: missing column(s) {missing}; expected {list(SIGNAL_COLUMNS)}")
-    for col in ("time_s", "p_Pa"):
-        if not np.isfinite(signals[col].to_numpy(dtype=float)).all():
-            raise ValueError(f"pressure signals: column '{col}' has non-finite values")
-    obs_values, obs_code = np.unique(signals["observer"].to_numpy(), return_inverse=True)
-    grp_code, grp_values = pd.factorize(signals["group"], sort=True)
-    unknown = sorted(set(grp_values) - set(groups))
-    if unknown:
-        raise ValueError(f"pressure signals: column 'group' has {unknown}; expected {list(groups)}")
-    n_obs, n_grp = obs_values.size, grp_values.size
-    key = obs_code * n_grp + grp_code
-    counts = np.bincount(key, minlength=n_obs * n_grp)
-    if counts.min() == 0 or counts.min() != counts.max():
-        raise ValueError("pressure signals: every observer needs every group with the same number of samples")
-    n = int(counts[0])
-    time_all = signals["time_s"].to_numpy(dtype=float)
-    order = np.lexsort((time_all, key))
-    times = time_all[order].reshape(n_obs * n_grp, n)
-    if not np.allclose(times, times[0], rtol=0.0, atol=1e-9 * (times[0, -1] - times[0, 0])):
-        raise ValueError("pressure signals: all observers and groups must share one time grid")
-    p = signals["p_Pa"].to_numpy(dtype=float)[order].reshape(n_obs, n_grp, n).sum(axis=1)
-    observers = obs_values
-    return observers.astype(np.int32), times[0], p
+    ids, time_s, p = signal_arrays(signals, groups)
+    return ids, time_s, sum(p.values())
 
 
 def process(

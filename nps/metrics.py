@@ -34,6 +34,7 @@ import pandas as pd
 
 from nps import broadband
 from nps.atmosphere import AtmosphereState, absorb_band_levels, absorb_periodic_signal
+from nps.io import signal_arrays
 from nps.rotor import RotorGeometry
 from nps.spectra import (
     LEVEL_FLOOR_DB,
@@ -349,35 +350,6 @@ def observer_set_metrics(
     )
 
 
-def _signal_arrays(table: pd.DataFrame, what: str) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
-    """(observer ids, time grid, group → p (n_obs, N)) of one rotor's signal table."""
-    missing = [c for c in ("observer", "group", "time_s", "p_Pa") if c not in table.columns]
-    if missing:
-        raise ValueError(f"{what}: missing column(s) {missing}")
-    df = table.sort_values(["group", "observer", "time_s"], kind="mergesort")
-    ids = np.sort(df["observer"].unique())
-    out = {}
-    time = None
-    for group, part in df.groupby("group", sort=True):
-        if part.groupby("observer").size().nunique() != 1 or part["observer"].nunique() != ids.size:
-            raise ValueError(f"{what}: group '{group}' needs every observer with the same number of samples")
-        n = len(part) // ids.size
-        t = part["time_s"].to_numpy().reshape(ids.size, n)
-        if not np.allclose(t, t[0]):
-            raise ValueError(f"{what}: group '{group}' observers do not share one time grid")
-        if time is None:
-            time = t[0]
-        elif time.shape != t[0].shape or not np.allclose(time, t[0]):
-            raise ValueError(f"{what}: groups do not share one time grid")
-        out[str(group)] = part["p_Pa"].to_numpy(dtype=float).reshape(ids.size, n)
-    if time is None:
-        raise ValueError(f"{what}: no rows")
-    step = np.diff(time)
-    if time.size < 2 or not np.allclose(step, step[0], rtol=1e-9, atol=0.0):
-        raise ValueError(f"{what}: time_s must be a uniform grid")
-    return ids, time, out
-
-
 def metrics_tables(
     signals: Mapping[str, pd.DataFrame],
     observers: pd.DataFrame,
@@ -422,7 +394,7 @@ def metrics_tables(
         if hsi_signals is not None:
             tables.append((hsi_signals[name], f"HSI signals of rotor '{name}'"))
         for table, what in tables:
-            ids, time, groups = _signal_arrays(table, what)
+            ids, time, groups = signal_arrays(table, what=what)
             if ids.shape != ids_ref.shape or np.any(ids != ids_ref):
                 raise ValueError(f"{what}: observers differ from the observers artifact")
             if time_ref is None:

@@ -19,8 +19,12 @@ from typing import Mapping, Sequence
 import numpy as np
 import pandas as pd
 
-from nps.acoustics import AcousticsError
 from nps.frames import observer_direction
+
+
+class ObserverError(ValueError):
+    """An observer-set specification is invalid."""
+
 
 KINDS = ("point", "hemisphere", "sphere", "points_ahead", "ground_grid")
 
@@ -45,11 +49,11 @@ def points(position_m: Sequence[Sequence[float]], velocity_mps=(0.0, 0.0, 0.0)) 
 def directions(center_m, radius_m: float, azimuth_deg, elevation_deg, velocity_mps=(0.0, 0.0, 0.0)) -> pd.DataFrame:
     """Observers at ``radius_m`` from ``center_m`` (G, t = 0) in map directions (deg)."""
     if not radius_m > 0:
-        raise AcousticsError(f"observers: radius must be positive, got {radius_m}")
+        raise ObserverError(f"observers: radius must be positive, got {radius_m}")
     az = np.asarray(azimuth_deg, dtype=float)
     el = np.asarray(elevation_deg, dtype=float)
     if np.any(np.abs(el) > 90.0):
-        raise AcousticsError("observers: elevations must lie in [-90, 90] deg")
+        raise ObserverError("observers: elevations must lie in [-90, 90] deg")
     d = observer_direction(np.radians(az), np.radians(el))
     return _table(np.asarray(center_m, float)[None, :] + radius_m * d, velocity_mps, {"azimuth_deg": az, "elevation_deg": el})
 
@@ -62,7 +66,7 @@ def hemisphere(center_m, radius_m: float, n_elevation: int, n_azimuth: int, velo
     az_j = j·360°/n_azimuth. 19 × 72 gives 5° steps.
     """
     if n_elevation < 2 or n_azimuth < 1:
-        raise AcousticsError(f"observers: need n_elevation >= 2 and n_azimuth >= 1, got {n_elevation}, {n_azimuth}")
+        raise ObserverError(f"observers: need n_elevation >= 2 and n_azimuth >= 1, got {n_elevation}, {n_azimuth}")
     top = 90.0 if full_sphere else 0.0
     el = np.linspace(top, -90.0, n_elevation)
     az = np.arange(n_azimuth) * 360.0 / n_azimuth
@@ -74,7 +78,7 @@ def ground_grid(center_m, height_below_m: float, x_range_m, y_range_m, n_x: int,
                 velocity_mps=(0.0, 0.0, 0.0)) -> pd.DataFrame:
     """Horizontal grid ``height_below_m`` below ``center_m``; x along the track, y to port (G)."""
     if not height_below_m > 0 or n_x < 1 or n_y < 1:
-        raise AcousticsError("observers: ground grid needs height_below_m > 0, n_x >= 1, n_y >= 1")
+        raise ObserverError("observers: ground grid needs height_below_m > 0, n_x >= 1, n_y >= 1")
     gx = np.linspace(*x_range_m, n_x)
     gy = np.linspace(*y_range_m, n_y)
     xx, yy = np.meshgrid(gx, gy, indexing="ij")
@@ -102,4 +106,4 @@ def observer_set(spec: Mapping, center_m, reference_radius_m: float, aircraft_ve
     if kind == "ground_grid":
         return ground_grid(np.zeros(3), spec["height_below_m"], spec["x_range_m"], spec["y_range_m"], int(spec["n_x"]),
                            int(spec["n_y"]), velocity)
-    raise AcousticsError(f"observer set: kind '{kind}', expected one of {KINDS[1:]}")
+    raise ObserverError(f"observer set: kind '{kind}', expected one of {KINDS[1:]}")

@@ -25,7 +25,6 @@ zero-phase Butterworth filter (scipy ``sosfiltfilt``) is used.
 from __future__ import annotations
 
 import numpy as np
-from scipy import signal as _signal
 
 P_REF_PA = 20e-6
 LEVEL_FLOOR_DB = -100.0
@@ -78,7 +77,9 @@ def _window(name: str, n: int) -> np.ndarray:
         raise ValueError(f"window must be one of {WINDOWS}, got {name!r}")
     if name == "none":
         return np.ones(n)
-    return _signal.get_window(name, n, fftbins=True)
+    from scipy.signal import get_window  # scipy.signal costs ~1 s to import: only when windowing
+
+    return get_window(name, n, fftbins=True)
 
 
 def narrowband_msp(p_pa, dt_s: float, window: str = "none") -> tuple[np.ndarray, np.ndarray]:
@@ -199,6 +200,8 @@ def filter_signal(
         if lowpass_hz is not None:
             keep &= f <= lowpass_hz
         return np.fft.irfft(np.fft.rfft(p, axis=-1) * keep, n=p.shape[-1], axis=-1)
+    from scipy import signal as _signal  # ~1 s import: only for non-periodic filtering
+
     if highpass_hz is not None and lowpass_hz is not None:
         sos = _signal.butter(order, [highpass_hz, lowpass_hz], btype="bandpass", fs=1.0 / dt_s, output="sos")
     elif highpass_hz is not None:

@@ -13,7 +13,7 @@ from typing import Mapping
 import numpy as np
 import pandas as pd
 
-STAGES = ("trim", "loads", "wake", "bvi", "observers", "acoustics", "hsi", "metrics")
+STAGES = ("trim", "loads", "wake", "observers", "acoustics", "hsi", "metrics")
 
 
 def hotspot(metrics: pd.DataFrame, column: str) -> dict[str, float]:
@@ -59,7 +59,8 @@ def segment_summary(
 
     ``metrics`` maps a variant (``base``/``bvi``) to the hemisphere metrics table of that
     variant; the reported levels use the BVI variant where it exists (the physical answer) and
-    also give the base-variant maximum for comparison. ``loads_summaries`` maps rotor → the
+    also give the base-variant maximum for comparison (``without_bvi_computed`` False: only the
+    BVI variant was radiated and the column repeats the BVI value). ``loads_summaries`` maps rotor → the
     long ``loads/{rotor}_summary.parquet`` table (quantity, value, unit).
     """
     first = trim.iloc[0]
@@ -85,7 +86,10 @@ def segment_summary(
         row[f"max_{label}_db"] = spot["value"]
         row[f"max_{label}_azimuth_deg"] = spot["azimuth_deg"]
         row[f"max_{label}_elevation_deg"] = spot["elevation_deg"]
-    row["max_bvispl_without_bvi_db"] = hotspot(metrics["base"], "bvispl_db")["value"]
+    # no NaN in artifacts: where only the BVI loads were radiated the column repeats the BVI value
+    # and without_bvi_computed says so
+    row["without_bvi_computed"] = "base" in metrics
+    row["max_bvispl_without_bvi_db"] = hotspot(metrics["base"] if "base" in metrics else table, "bvispl_db")["value"]
     for stage in STAGES:
         row[f"wall_{stage}_s"] = float(wall_times_s.get(stage, 0.0))
     return row

@@ -13,10 +13,9 @@ import sys
 
 from nps.atmosphere import isa
 from nps.config import ConfigError, load_aircraft
-from nps.io import ArtifactError, read_table, write_table
+from nps.io import SIGNAL_COLUMNS, ArtifactError, read_table, write_table
 from nps.metrics import metrics_tables, rotor_solidities
 
-SIGNAL_COLUMNS = ("observer", "group", "time_s", "p_Pa")
 OBSERVER_COLUMNS = ("observer", "x_m", "y_m", "z_m", "elevation_deg", "azimuth_deg")
 TRIM_COLUMNS = ("rotor", "n_blades", "radius_m", "omega_rad_s", "thrust_N", "ct", "hub_x_m", "hub_y_m", "hub_z_m",
                 "r_gh_02", "r_gh_12", "r_gh_22", "speed_of_sound_mps")

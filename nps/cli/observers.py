@@ -22,10 +22,9 @@ from typing import Mapping, Sequence
 import numpy as np
 import pandas as pd
 
-from nps.acoustics import AcousticsError
 from nps.config import ConfigError, load_aircraft, read_yaml
 from nps.io import ArtifactError, read_table, write_table
-from nps.observers import observer_set
+from nps.observers import ObserverError, observer_set
 
 TRIM_COLUMNS = ("rotor", "hub_x_m", "hub_y_m", "hub_z_m", "vel_x_mps", "vel_y_mps", "vel_z_mps")
 
@@ -60,7 +59,7 @@ def with_directions(table: pd.DataFrame, centre_m) -> pd.DataFrame:
     rel = table[["x_m", "y_m", "z_m"]].to_numpy(float) - np.asarray(centre_m, float)[None, :]
     dist = np.linalg.norm(rel, axis=1)
     if not (dist > 0).all():
-        raise AcousticsError(f"observers: observer {int(np.argmin(dist))} sits at the set's centre; its direction is undefined")
+        raise ObserverError(f"observers: observer {int(np.argmin(dist))} sits at the set's centre; its direction is undefined")
     out = table.copy()
     out["elevation_deg"] = np.degrees(np.arcsin(np.clip(rel[:, 2] / dist, -1.0, 1.0)))
     out["azimuth_deg"] = np.degrees(np.arctan2(-rel[:, 1], -rel[:, 0])) % 360.0
@@ -98,7 +97,7 @@ def main(argv: list[str]) -> int:
         aircraft = load_aircraft(args.aircraft)
         table = run(sets[args.set], args.trim, rotor_roles(aircraft), aircraft["rotors"][0]["radius_m"], args.out,
                     {"aircraft": aircraft["name"], "obsset": args.set})
-    except (ConfigError, ArtifactError, AcousticsError, KeyError) as exc:
+    except (ConfigError, ArtifactError, ObserverError, KeyError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 1
     print(f"{len(table)} observers written to {args.out}")

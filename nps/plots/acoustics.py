@@ -23,6 +23,7 @@ from nps.plots import save_figure  # noqa: E402
 import pandas as pd  # noqa: E402
 
 from nps.frames import observer_direction  # noqa: E402
+from nps.io import signal_arrays  # noqa: E402
 
 # label -> (azimuth_deg, elevation_deg) of the observers shown besides the loudest one
 DIRECTIONS = {
@@ -44,19 +45,13 @@ def group_signals(tables: Sequence[pd.DataFrame]) -> tuple[np.ndarray, np.ndarra
     ids = time = None
     summed = {}
     for table in tables:
-        part = table[table["group"].isin(GROUPS)].sort_values(["group", "observer", "time_s"], kind="mergesort")
-        for group, rows in part.groupby("group", sort=True):
-            obs = np.unique(rows["observer"].to_numpy())
-            t = np.unique(rows["time_s"].to_numpy(float))
-            if rows.shape[0] != obs.size * t.size:
-                raise ValueError(f"pressure signals: group '{group}' is not one sample per observer and time")
-            if ids is None:
-                ids, time = obs, t
-            elif not (np.array_equal(obs, ids) and np.allclose(t, time, rtol=0.0, atol=1e-9 * max(1.0, abs(time[-1])))):
-                raise ValueError("pressure signals: the rotors' tables do not share observers and time grid")
-            summed[group] = summed.get(group, 0.0) + rows["p_Pa"].to_numpy(float).reshape(obs.size, t.size)
-    if ids is None:
-        raise ValueError(f"pressure signals: no rows of the groups {list(GROUPS)}")
+        obs, t, groups = signal_arrays(table[table["group"].isin(GROUPS)], GROUPS)
+        if ids is None:
+            ids, time = obs, t
+        elif not (np.array_equal(obs, ids) and np.allclose(t, time, rtol=0.0, atol=1e-9 * max(1.0, abs(time[-1])))):
+            raise ValueError("pressure signals: the rotors' tables do not share observers and time grid")
+        for group, p in groups.items():
+            summed[group] = summed.get(group, 0.0) + p
     summed["total"] = sum(summed.values())
     return ids, time, summed
 

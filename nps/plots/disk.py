@@ -22,6 +22,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
+from nps.plots import save_figure  # noqa: E402
+
 
 def disk_grid(table: pd.DataFrame, column: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(ψ (n_psi,), r (n_r,), values (n_psi, n_r)) of one column of a ψ-major disk table."""
@@ -151,6 +153,6 @@ def loads_figure(table: pd.DataFrame, path: str | os.PathLike, *, rotation_sign:
         disk_plot(psi, r, v * scale, rotation_sign=rotation_sign, ax=ax, label=label, cmap=cmap, vmin=vmin, vmax=vmax,
                   reverse_flow_ut=ut)
     fig.suptitle(title)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    # fixed margins: tight_layout measures all 16 axes and costs ~1 s per figure
+    fig.subplots_adjust(left=0.035, right=0.975, bottom=0.06, top=0.93, wspace=0.42, hspace=0.25)
+    save_figure(fig, path)

@@ -50,7 +50,8 @@ def plot_intermediate(inter: HsiIntermediate, path) -> Path:
     )
 
 
-def plot_observer_histories(histories: Mapping[str, tuple[np.ndarray, np.ndarray, np.ndarray]], path) -> Path:
+def plot_observer_histories(histories: Mapping[str, tuple[np.ndarray, np.ndarray, np.ndarray]], path,
+                            title: str = "") -> Path:
     """Stacked time histories ``label -> (time_s, p_original_pa, p_hsi_pa)``, e.g. the five HSI observers
     10 R ahead at 0° … −52° elevation; time in ms from the first sample, pressure in Pa."""
     cmap = plt.get_cmap("cividis")
@@ -62,6 +63,8 @@ def plot_observer_histories(histories: Mapping[str, tuple[np.ndarray, np.ndarray
         ax.grid(alpha=0.3)
     axes[0, 0].legend(loc="lower right", fontsize=7)
     axes[-1, 0].set_xlabel("time [ms]")
+    if title:
+        fig.suptitle(title)
     fig.tight_layout()
     return save_figure(fig, path)
 

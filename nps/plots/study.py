@@ -10,6 +10,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
+from nps.io import signal_arrays
 from nps.plots import save_figure
 import pandas as pd
 
@@ -47,12 +48,11 @@ def study_maps(kind: str, aircraft: str, metrics_by_segment: Mapping[str, pd.Dat
 
 
 def rotor_oaspl(signals: pd.DataFrame) -> pd.DataFrame:
-    """OASPL (dB re 20 µPa) per observer of one rotor's signal table (sum of its groups)."""
-    total = signals[signals["group"] != "total"].groupby(["observer", "time_s"], sort=True)["p_Pa"].sum()
-    p = total.unstack("time_s").to_numpy()
+    """OASPL (dB re 20 µPa) per observer of one rotor's signal table (sum of its source groups)."""
+    ids, _, groups = signal_arrays(signals[signals["group"] != "total"])
+    p = sum(groups.values())
     p = p - p.mean(axis=1, keepdims=True)
-    level = level_db(np.mean(p * p, axis=1))
-    return pd.DataFrame({"observer": total.index.get_level_values(0).unique().to_numpy(), "oaspl_db": level})
+    return pd.DataFrame({"observer": ids, "oaspl_db": level_db(np.mean(p * p, axis=1))})
 
 
 def rotor_maps(aircraft: str, rotor: str, levels_by_segment: Mapping[str, pd.DataFrame], observers: pd.DataFrame, path) -> None:

@@ -50,3 +50,25 @@ def test_read_names_missing_columns(tmp_path):
     write_table(pd.DataFrame({"a": [1.0]}), tmp_path / "x.parquet", stage="test")
     with pytest.raises(ArtifactError, match=r"missing column\(s\) \['b'\]"):
         read_table(tmp_path / "x.parquet", required=("a", "b"))
+
+
+def test_signal_arrays_inverts_signals_table_in_any_row_order():
+    """signal_arrays(signals_table(p)) == p, also after shuffling rows (the non-canonical path)."""
+    from nps.acoustics import TimeGrid, signals_table
+    from nps.io import signal_arrays
+
+    rng = np.random.default_rng(3)
+    ids = np.array([7, 2, 5])
+    pressure = rng.normal(size=(3, 2, 16))
+    table = signals_table(ids, ("thickness", "loading"), pressure, TimeGrid(0.0, 0.1, 16), total=False)
+    order = np.argsort(ids)
+    for t in (table, table.sample(frac=1.0, random_state=1)):
+        got_ids, time_s, groups = signal_arrays(t)
+        np.testing.assert_array_equal(got_ids, ids[order])
+        np.testing.assert_allclose(time_s, np.arange(16) * 0.1 / 16)
+        np.testing.assert_array_equal(groups["thickness"], pressure[order, 0])
+        np.testing.assert_array_equal(groups["loading"], pressure[order, 1])
+    with pytest.raises(ValueError, match="same number of samples"):
+        signal_arrays(table.iloc[1:])
+    with pytest.raises(ValueError, match="expected"):
+        signal_arrays(table, groups=("thickness",))

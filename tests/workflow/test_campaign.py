@@ -1,7 +1,7 @@
 """End-to-end: a tiny campaign through the real Snakefile, then rerun scope and no-op rerun.
 
 The workflow runs from the repository's Snakefile with a temporary working directory holding
-a copy of config/ (one aircraft, two segments, coarse resolution), so the numba cache of the
+a copy of config/ (two aircraft, two segments, coarse resolution), so the numba cache of the
 repository is reused.
 """
 
@@ -19,7 +19,7 @@ import yaml
 REPO = Path(__file__).resolve().parents[2]
 
 TINY = {
-    "campaign": {"mission": "demo", "aircraft": ["helicopter"], "segments": ["seg2", "seg3"]},
+    "campaign": {"mission": "demo", "aircraft": ["helicopter", "coaxial"], "segments": ["seg2", "seg3"]},
     "observer_sets": {
         "hemisphere": {"kind": "hemisphere", "radius_R": 10.0, "n_elevation": 4, "n_azimuth": 8, "moving": True},
         "hsi": {"kind": "points_ahead", "radius_R": 10.0, "elevations_deg": [0.0, -26.0], "moving": True, "segments": ["seg2"]},
@@ -83,25 +83,42 @@ def test_second_run_does_nothing(campaign_dir):
     assert "Nothing to be done" in result.stdout + result.stderr
 
 
-def test_changing_one_segment_reruns_only_that_segment(campaign_dir):
-    mission = campaign_dir / "config" / "missions" / "demo.yaml"
-    original = mission.read_text()
+def _jobs_after_edit(campaign_dir: Path, relative: str, edit) -> list[tuple[str, str]]:
+    """Jobs (rule, wildcards; without `all`) a dry run schedules after ``edit`` changed one YAML file of
+    the campaign's config/; the file is restored afterwards."""
+    path = campaign_dir / "config" / relative
+    original = path.read_text()
     data = yaml.safe_load(original)
-    data["segments"][2]["aircraft"]["helicopter"]["forward_speed_mps"] = 27.0
-    data["segments"][2]["aircraft"]["helicopter"].pop("flight_path_deg")
-    mission.write_text(yaml.safe_dump(data, sort_keys=False))
+    edit(data)
+    path.write_text(yaml.safe_dump(data, sort_keys=False))
     try:
         result = _snakemake(campaign_dir, "-n", "all")
     finally:
-        mission.write_text(original)
+        path.write_text(original)
     assert result.returncode == 0, result.stderr[-2000:]
-    jobs = [job for job in _jobs(result.stdout + result.stderr) if job[0] != "all"]
-    assert jobs, result.stdout
+    return [job for job in _jobs(result.stdout + result.stderr) if job[0] != "all"]
+
+
+def test_changing_one_segment_reruns_only_that_segment(campaign_dir):
+    def faster_seg3(mission):
+        mission["segments"][2]["aircraft"]["helicopter"]["forward_speed_mps"] = 27.0
+        mission["segments"][2]["aircraft"]["helicopter"].pop("flight_path_deg")
+
+    jobs = _jobs_after_edit(campaign_dir, "missions/demo.yaml", faster_seg3)
     # per-segment jobs: only seg3's; aircraft-level study jobs (maps over segments, summary) read seg3 too
     aircraft_level = {"summary", "study_maps", "rotor_maps"}
     assert all("segment=seg3" in wildcards or rule in aircraft_level for rule, wildcards in jobs), jobs
     assert not any("segment=seg2" in wildcards for _, wildcards in jobs), jobs
-    assert any(rule == "trim" for rule, _ in jobs)
+    assert any(rule == "trim" for rule, _ in jobs), jobs
+
+
+def test_changing_one_aircraft_reruns_only_that_aircraft(campaign_dir):
+    def heavier_lock(aircraft):
+        aircraft["rotors"][0]["lock_number"] = float(aircraft["rotors"][0]["lock_number"]) * 1.05
+
+    jobs = _jobs_after_edit(campaign_dir, "aircraft/coaxial.yaml", heavier_lock)
+    assert any(rule == "trim" for rule, _ in jobs), jobs
+    assert all("aircraft=coaxial" in wildcards for _, wildcards in jobs), jobs
 
 
 def test_lint_reports_only_environment_findings():

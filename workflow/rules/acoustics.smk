@@ -1,6 +1,7 @@
-# Acoustics (issue 5): observer sets per aircraft x segment, compact-F1A pressure signals per rotor x
-# observer set x load variant (nps.acoustics via nps.cli.observers / nps.cli.rotor_acoustics), and
-# pressure time-history figures. Signals share one grid per aircraft: one revolution of the first rotor.
+# Acoustics (issue 5): observer sets per aircraft x segment, compact-F1A pressure signals of every
+# rotor per observer set x load variant (nps.acoustics via nps.cli.observers / nps.cli.rotor_acoustics).
+# Pressure time-history figures: rule bvi_hotspot (study.smk). Signals share one grid per aircraft:
+# one revolution of the first rotor.
 # Hemisphere and points-ahead centre: mean hub of the lift rotors (main-rotor hub of the helicopter,
 # midpoint of tandem / coaxial hubs, hub-circle centre of the multirotor); radii in first-rotor radii.
 
@@ -29,68 +30,27 @@ rule observers:
 
 rule acoustics:
     input:
-        # trimmed loads (variant base) or loads with the wake's induced velocity (variant bvi)
-        disk=lambda wc: f"{RESULTS}/{wc.aircraft}/{wc.segment}/{'loads' if wc.variant == 'base' else 'bvi'}/{wc.rotor}.parquet",
+        # every rotor's trimmed loads (variant base) or loads with the wake's induced velocity (variant bvi)
+        unpack(acoustics_disk_inputs),
         trim=f"{RESULTS}/{{aircraft}}/{{segment}}/trim.parquet",
         observers=f"{RESULTS}/{{aircraft}}/{{segment}}/observers/{{obsset}}.parquet",
     output:
-        f"{RESULTS}/{{aircraft}}/{{segment}}/acoustics/{{obsset}}/{{rotor}}_{{variant}}.parquet",
+        # one signal table per rotor: {rotor}.parquet (one job per aircraft: ~3 s of start-up saved per rotor)
+        directory(signals_dir("acoustics")),
     params:
+        rotors=lambda wildcards: rotor_names(wildcards.aircraft),
         thickness=config["models"]["thickness"],
         chord_fractions=config["acoustics"]["dual_compact_chord_fractions"],
         samples_per_rev=config["resolution"]["samples_per_rev"],
-        reference_rotor=lambda wildcards: rotor_names(wildcards.aircraft)[0],
-        hinge_offset_m=lambda wildcards: rotor_config(wildcards).get("hinge_offset_m", 0.0),
+        hinge_offsets_m=lambda wildcards: {r["name"]: r.get("hinge_offset_m", 0.0) for r in aircraft_config(wildcards)["rotors"]},
         code=nps_hash("acoustics", "sources", "cli/rotor_acoustics"),
     log:
-        log_path("acoustics", "{aircraft}/{segment}/{obsset}/{rotor}_{variant}"),
+        log_path("acoustics", "{aircraft}/{segment}/{obsset}_{variant}"),
     benchmark:
-        bench_path("acoustics", "{aircraft}/{segment}/{obsset}/{rotor}_{variant}")
+        bench_path("acoustics", "{aircraft}/{segment}/{obsset}_{variant}")
     threads: 1
     resources:
         mem_mb=2000,
         runtime=10,
     script:
         "../scripts/acoustics.py"
-
-
-rule acoustics_figure:
-    input:
-        # signals of every rotor of the aircraft
-        unpack(
-            lambda wc: {
-                f"signal_{r}": f"{RESULTS}/{wc.aircraft}/{wc.segment}/acoustics/{wc.obsset}/{r}_{wc.variant}.parquet"
-                for r in rotor_names(wc.aircraft)
-            }
-        ),
-        observers=f"{RESULTS}/{{aircraft}}/{{segment}}/observers/{{obsset}}.parquet",
-    output:
-        report(
-            f"{RESULTS}/{{aircraft}}/{{segment}}/figures/pressure_{{obsset}}_{{variant}}.png",
-            caption="../report/acoustics_histories.rst",
-            category="{aircraft}",
-            subcategory="{segment}",
-            labels={"aircraft": "{aircraft}", "segment": "{segment}", "figure": "pressure, {obsset} ({variant})"},
-        ),
-    params:
-        rotors=lambda wildcards: rotor_names(wildcards.aircraft),
-        code=nps_hash("plots/acoustics"),
-    log:
-        log_path("acoustics_figure", "{aircraft}/{segment}/{obsset}_{variant}"),
-    benchmark:
-        bench_path("acoustics_figure", "{aircraft}/{segment}/{obsset}_{variant}")
-    threads: 1
-    resources:
-        mem_mb=1500,
-        runtime=5,
-    script:
-        "../scripts/acoustics_figure.py"
-
-
-ALL_TARGETS.extend(
-    f"{RESULTS}/{a}/{s}/figures/pressure_{o}_{variants(s)[-1]}.png"
-    for a in CAMPAIGN.aircraft
-    for s in figure_segments("map")
-    for o in observer_sets(s)
-    if config["observer_sets"][o]["kind"] in ("hemisphere", "sphere")
-)

@@ -42,6 +42,10 @@ def rotor_config(wildcards):
     return CAMPAIGN.rotor(wildcards.aircraft, wildcards.rotor)
 
 
+def rotor_config_named(aircraft, rotor):
+    return CAMPAIGN.rotor(aircraft, rotor)
+
+
 def segment_speeds(wildcards):
     """Speeds of one aircraft in one segment (a mission-file slice)."""
     return CAMPAIGN.segment(wildcards.segment)["aircraft"][wildcards.aircraft]
@@ -77,8 +81,14 @@ def figure_rotors(aircraft):
 
 
 def variants(segment):
-    """Load variants radiated in a segment: the trimmed loads, plus BVI loads where BVI is on."""
-    return ["base", "bvi"] if segment in bvi_segments() else ["base"]
+    """Load variants radiated in a segment: the trimmed loads ("base") and/or the BVI loads ("bvi").
+
+    Outside the BVI segments only "base"; in a BVI segment "bvi", preceded by "base" where the
+    comparison without BVI is asked for (models.without_bvi_segments, default every BVI segment).
+    """
+    if segment not in bvi_segments():
+        return ["base"]
+    return ["base", "bvi"] if segment in config["models"].get("without_bvi_segments", bvi_segments()) else ["bvi"]
 
 
 def figure_segments(kind):
@@ -99,26 +109,27 @@ def bench_path(stage, suffix="{aircraft}/{segment}"):
     return f"{RESULTS}/benchmarks/{stage}/{suffix}.tsv"
 
 
-# used by hsi.smk
-def hsi_figure_inputs(wildcards):
-    """Unprocessed and HSI signals of every rotor of the aircraft for one observer set."""
+def signals_dir(stage):
+    """Directory of the per-rotor signal tables ({rotor}.parquet) of a stage ("acoustics" or "hsi")."""
+    return f"{RESULTS}/{{aircraft}}/{{segment}}/{stage}/{{obsset}}_{{variant}}"
+
+
+# used by acoustics.smk
+def acoustics_disk_inputs(wildcards):
+    """Disk table of every rotor: trimmed loads (variant base) or BVI loads (variant bvi)."""
     base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
-    rotors = rotor_names(wildcards.aircraft)
-    inputs = {f"signal_{r}": f"{base}/acoustics/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors}
-    inputs.update({f"hsi_{r}": f"{base}/hsi/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors})
-    return inputs
+    if wildcards.variant == "bvi":  # the wake job writes the bvi/ directory of every rotor
+        return {"bvi_dir": f"{base}/bvi"}
+    return {f"disk_{r}": f"{base}/loads/{r}.parquet" for r in rotor_names(wildcards.aircraft)}
 
 
 # used by metrics.smk
 def metrics_signal_inputs(wildcards):
-    """Pressure signals of every rotor of the aircraft (and their HSI-processed versions)."""
+    """Pressure-signal directory of the aircraft (and its HSI-processed version in HSI segments)."""
     base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
-    rotors = rotor_names(wildcards.aircraft)
-    inputs = {
-        f"signal_{r}": f"{base}/acoustics/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors
-    }
+    inputs = {"signals": f"{base}/acoustics/{wildcards.obsset}_{wildcards.variant}"}
     if wildcards.segment in hsi_segments():
-        inputs.update({f"hsi_{r}": f"{base}/hsi/{wildcards.obsset}/{r}_{wildcards.variant}.parquet" for r in rotors})
+        inputs["hsi"] = f"{base}/hsi/{wildcards.obsset}_{wildcards.variant}"
     return inputs
 
 
@@ -140,8 +151,15 @@ MAP_SEGMENTS = {
 
 
 # used by study.smk
-wildcard_constraints:
-    kind="oaspl|dba|bvispl|hsi_oaspl",
+def map_kinds():
+    """Map families with at least one segment in the campaign."""
+    return [kind for kind, segments in MAP_SEGMENTS.items() if segments()]
+
+
+# used by study.smk
+def map_segments_all():
+    """Segments drawn in any map family."""
+    return [s for s in CAMPAIGN.segments if any(s in MAP_SEGMENTS[kind]() for kind in map_kinds())]
 
 
 # used by study.smk
@@ -157,3 +175,24 @@ def hemisphere_metrics(aircraft, segment):
 # used by study.smk
 def antitorque_rotors(aircraft):
     return [r["name"] for r in CAMPAIGN.aircraft[aircraft]["rotors"] if r["role"] == "antitorque"]
+
+
+# used by wake.smk
+def wake_inputs(wildcards):
+    base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
+    inputs = {"trim": f"{base}/trim.parquet"}
+    for r in rotor_names(wildcards.aircraft):
+        inputs[f"disk_{r}"] = f"{base}/loads/{r}.parquet"
+        inputs[f"summary_{r}"] = f"{base}/loads/{r}_summary.parquet"
+    return inputs
+
+
+# used by figures.smk
+def rotor_figure_inputs(wildcards):
+    base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
+    inputs = {}
+    for r in figure_rotors(wildcards.aircraft):
+        inputs[f"loads_{r}"] = f"{base}/loads/{r}.parquet"
+    if wildcards.segment in bvi_segments():
+        inputs.update(wake=f"{base}/wake", bvi=f"{base}/bvi")
+    return inputs

@@ -1,41 +1,44 @@
 # High-speed-impulsive noise (issue 7): each rotor's signals amplified, sheared and shock-fitted per
-# observer with the rotor's own M_r and radiation distance (nps.hsi); metrics sum the rotors.
+# observer with the rotor's own M_r and radiation distance (nps.hsi), all rotors of the aircraft in
+# one job per observer set x variant; metrics sum the rotors.
 # Only scheduled when config models.hsi is true (metrics then read hsi/ instead of acoustics/).
 
 
 rule hsi:
     input:
-        signals=f"{RESULTS}/{{aircraft}}/{{segment}}/acoustics/{{obsset}}/{{rotor}}_{{variant}}.parquet",
+        signals=signals_dir("acoustics"),
         observers=f"{RESULTS}/{{aircraft}}/{{segment}}/observers/{{obsset}}.parquet",
         trim=f"{RESULTS}/{{aircraft}}/{{segment}}/trim.parquet",
     output:
-        signals=f"{RESULTS}/{{aircraft}}/{{segment}}/hsi/{{obsset}}/{{rotor}}_{{variant}}.parquet",
-        diagnostics=f"{RESULTS}/{{aircraft}}/{{segment}}/hsi/{{obsset}}/{{rotor}}_{{variant}}_diagnostics.parquet",
+        # {rotor}.parquet (HSI signals) and {rotor}_diagnostics.parquet per rotor
+        directory(signals_dir("hsi")),
     params:
+        rotors=lambda wildcards: rotor_names(wildcards.aircraft),
         code=nps_hash("hsi"),
     log:
-        log_path("hsi", "{aircraft}/{segment}/{obsset}/{rotor}_{variant}"),
+        log_path("hsi", "{aircraft}/{segment}/{obsset}_{variant}"),
     benchmark:
-        bench_path("hsi", "{aircraft}/{segment}/{obsset}/{rotor}_{variant}")
+        bench_path("hsi", "{aircraft}/{segment}/{obsset}_{variant}")
     threads: 1
     resources:
-        mem_mb=1500,
-        runtime=5,
+        mem_mb=2000,
+        runtime=10,
     script:
         "../scripts/hsi.py"
 
 
 rule hsi_figure:
     input:
-        unpack(hsi_figure_inputs),
+        signals=signals_dir("acoustics"),
+        hsi=signals_dir("hsi"),
         observers=f"{RESULTS}/{{aircraft}}/{{segment}}/observers/{{obsset}}.parquet",
     output:
         report(
             f"{RESULTS}/{{aircraft}}/{{segment}}/figures/hsi_{{obsset}}_{{variant}}.png",
             caption="../report/hsi_observers.rst",
-            category="HSI noise",
-            subcategory="{aircraft} {segment}",
-            labels={"aircraft": "{aircraft}", "segment": "{segment}", "observers": "{obsset}", "loads": "{variant}"},
+            category="{aircraft}",
+            subcategory="{segment}",
+            labels={"aircraft": "{aircraft}", "segment": "{segment}", "figure": "HSI histories, {obsset} observers ({variant})"},
         ),
     params:
         rotors=lambda wildcards: rotor_names(wildcards.aircraft),
@@ -53,12 +56,7 @@ rule hsi_figure:
 
 
 ALL_TARGETS.extend(
-    f"{RESULTS}/{a}/{s}/hsi/{o}/{r}_{v}.parquet"
-    for a in CAMPAIGN.aircraft
-    for s in hsi_segments()
-    for o in observer_sets(s)
-    for r in rotor_names(a)
-    for v in variants(s)
+    f"{RESULTS}/{a}/{s}/hsi/{o}_{v}" for a in CAMPAIGN.aircraft for s in hsi_segments() for o in observer_sets(s) for v in variants(s)
 )
 ALL_TARGETS.extend(
     f"{RESULTS}/{a}/{s}/figures/hsi_{o}_{v}.png"

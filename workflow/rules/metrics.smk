@@ -14,9 +14,9 @@ rule metrics:
         figure=report(
             f"{RESULTS}/{{aircraft}}/{{segment}}/metrics/{{obsset}}_{{variant}}_spectrum.png",
             caption="../report/metrics_spectrum.rst",
-            category="Spectra",
-            subcategory="{aircraft} {segment}",
-            labels={"aircraft": "{aircraft}", "segment": "{segment}", "observers": "{obsset}", "loads": "{variant}"},
+            category="{aircraft}",
+            subcategory="{segment}",
+            labels={"aircraft": "{aircraft}", "segment": "{segment}", "figure": "spectrum, loudest {obsset} observer ({variant})"},
         ),
     params:
         rotors=lambda wildcards: rotor_names(wildcards.aircraft),

@@ -1,10 +1,12 @@
-"""Snakemake script: pressure signals of one rotor at one observer set (nps.cli.rotor_acoustics)."""
+"""Snakemake script: pressure signals of every rotor of the aircraft at one observer set (nps.cli.rotor_acoustics)."""
 
 from contextlib import redirect_stderr
+from pathlib import Path
 
 import numba
 
 from nps.cli.rotor_acoustics import run
+from nps.io import signals_path
 from nps.sources import ThicknessModel
 
 with open(snakemake.log[0], "w") as log, redirect_stderr(log):
@@ -12,7 +14,9 @@ with open(snakemake.log[0], "w") as log, redirect_stderr(log):
     w = snakemake.wildcards
     numba.set_num_threads(max(1, min(snakemake.threads, numba.config.NUMBA_NUM_THREADS)))
     model = ThicknessModel(p.thickness, tuple(float(f) for f in p.chord_fractions))
-    table = run(snakemake.input.disk, snakemake.input.trim, snakemake.input.observers, w.rotor, p.reference_rotor,
-                int(p.samples_per_rev), model, float(p.hinge_offset_m), snakemake.output[0],
-                {"aircraft": w.aircraft, "segment": w.segment, "obsset": w.obsset, "variant": w.variant})
-    print(table.groupby("group")["p_Pa"].agg(["min", "max", "std"]).to_string(), file=log)
+    for rotor in p.rotors:
+        disk = Path(snakemake.input.bvi_dir) / f"{rotor}.parquet" if w.variant == "bvi" else snakemake.input[f"disk_{rotor}"]
+        table = run(disk, snakemake.input.trim, snakemake.input.observers, rotor, p.rotors[0],
+                    int(p.samples_per_rev), model, float(p.hinge_offsets_m[rotor]), signals_path(snakemake.output[0], rotor),
+                    {"aircraft": w.aircraft, "segment": w.segment, "obsset": w.obsset, "variant": w.variant})
+        print(f"rotor {rotor}:", table.groupby("group", observed=True)["p_Pa"].agg(["min", "max", "std"]).to_string(), file=log)

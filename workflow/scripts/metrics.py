@@ -3,15 +3,15 @@
 from contextlib import redirect_stderr
 
 from nps.atmosphere import isa
-from nps.io import read_table, write_table
+from nps.io import read_signals, read_table, write_table
 from nps.metrics import metrics_tables
 from nps.plots.spectra import loudest_observer_figure
 
 with open(snakemake.log[0], "w") as log, redirect_stderr(log):
     p = snakemake.params
     w = snakemake.wildcards
-    signals = {r: read_table(snakemake.input[f"signal_{r}"]) for r in p.rotors}
-    hsi = {r: read_table(snakemake.input[f"hsi_{r}"]) for r in p.rotors} if p.hsi else None
+    signals = read_signals(snakemake.input.signals, p.rotors)
+    hsi = read_signals(snakemake.input.hsi, p.rotors) if p.hsi else None
     trim = read_table(snakemake.input.trim)
     observers = read_table(snakemake.input.observers)
     atm = p.atmosphere

@@ -1,4 +1,4 @@
-"""Snakemake script: hemisphere maps of one level kind over several segments for one aircraft."""
+"""Snakemake script: hemisphere maps of every level family over its segments for one aircraft."""
 
 from contextlib import redirect_stderr
 
@@ -7,4 +7,6 @@ from nps.plots.study import study_maps
 
 with open(snakemake.log[0], "w") as log, redirect_stderr(log):
     tables = {segment: read_table(path) for segment, path in snakemake.input.items()}
-    study_maps(snakemake.wildcards.kind, snakemake.wildcards.aircraft, tables, snakemake.output[0])
+    for kind, segments in snakemake.params.segments.items():
+        study_maps(kind, snakemake.wildcards.aircraft, {s: tables[s] for s in segments}, snakemake.output[kind])
+        print(f"{kind}: segments {segments}", file=log)
