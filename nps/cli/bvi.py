@@ -13,7 +13,7 @@ from pathlib import Path
 
 from nps import bvi, wake
 from nps.cli.wake import model_arguments, model_from_args
-from nps.config import ConfigError, load_aircraft
+from nps.config import ConfigError, aircraft_rotor, load_aircraft
 from nps.io import ArtifactError, read_table, write_table
 from nps.rotor import RotorGeometry
 
@@ -54,9 +54,7 @@ def main(argv: list[str]) -> int:
     summary = args.summary or str(Path(args.loads).with_name(f"{Path(args.loads).stem}_summary.parquet"))
     try:
         aircraft = load_aircraft(args.aircraft)
-        rotor = next((r for r in aircraft["rotors"] if r["name"] == args.rotor), None)
-        if rotor is None:
-            raise ConfigError(f"{args.aircraft}: rotors: no rotor named '{args.rotor}'")
+        rotor = aircraft_rotor(aircraft, args.rotor, args.aircraft)
         result = run(rotor, args.loads, summary, args.trim, model_from_args(args), args.out,
                      bvi_model=bvi.BVIModel(unsteady=not args.quasi_steady), figure=args.figure,
                      title=f"{aircraft['name']} {args.rotor}", metadata={"aircraft": aircraft["name"]})

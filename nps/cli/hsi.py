@@ -13,8 +13,8 @@ import argparse
 import numpy as np
 import pandas as pd
 
-from nps.hsi import OBSERVER_COLUMNS, SIGNAL_COLUMNS, process
-from nps.io import read_table, write_table
+from nps.hsi import OBSERVER_COLUMNS, process
+from nps.io import SIGNAL_COLUMNS, read_table, write_table
 
 
 def _parser() -> argparse.ArgumentParser:

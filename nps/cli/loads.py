@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 
 from nps.bet import DiskGrid, TrimError, trim_rotor
-from nps.config import ConfigError, load_aircraft
+from nps.config import ConfigError, aircraft_rotor, load_aircraft
 from nps.io import ArtifactError, read_table, write_table
 from nps.rotor import OperatingPoint, RotorGeometry
 
@@ -55,9 +55,7 @@ def main(argv: list[str]) -> int:
     args = parser.parse_args(argv)
     try:
         aircraft = load_aircraft(args.aircraft)
-        rotor = next((r for r in aircraft["rotors"] if r["name"] == args.rotor), None)
-        if rotor is None:
-            raise ConfigError(f"{args.aircraft}: rotors: no rotor named '{args.rotor}'")
+        rotor = aircraft_rotor(aircraft, args.rotor, args.aircraft)
         done = run(rotor, args.trim, args.n_psi, args.n_r, args.out, {"aircraft": aircraft["name"]})
     except (ConfigError, ArtifactError, TrimError, ValueError) as exc:
         print(f"error: {exc}", file=sys.stderr)

@@ -20,7 +20,7 @@ import numpy as np
 import pandas as pd
 
 from nps.acoustics import LOADING, THICKNESS, AcousticsError, Observers, TimeGrid, radiate_rotor, signals_table
-from nps.config import ConfigError, load_aircraft
+from nps.config import ConfigError, aircraft_rotor, load_aircraft
 from nps.io import ArtifactError, read_table, write_table
 from nps.sources import DISK_COLUMNS, DUAL_COMPACT, ThicknessModel
 
@@ -92,9 +92,7 @@ def main(argv: list[str]) -> int:
     args = parser.parse_args(argv)
     try:
         aircraft = load_aircraft(args.aircraft)
-        rotor = next((r for r in aircraft["rotors"] if r["name"] == args.rotor), None)
-        if rotor is None:
-            raise ConfigError(f"{args.aircraft}: rotors: no rotor named '{args.rotor}'")
+        rotor = aircraft_rotor(aircraft, args.rotor, args.aircraft)
         model = ThicknessModel(args.thickness, tuple(args.chord_fractions))
         run(args.disk, args.trim, args.observers, args.rotor, aircraft["rotors"][0]["name"], args.samples_per_rev, model,
             float(rotor.get("hinge_offset_m", 0.0)), args.out, {"aircraft": aircraft["name"]})
