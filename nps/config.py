@@ -129,13 +129,13 @@ def load_aircraft(path: str | Path) -> dict:
     return data
 
 
-
 def aircraft_rotor(aircraft: dict, name: str, path: str | Path) -> dict:
     """The rotor called ``name`` of a validated aircraft read from ``path``; ConfigError naming the file if absent."""
     rotor = next((r for r in aircraft["rotors"] if r["name"] == name), None)
     if rotor is None:
         raise ConfigError(f"{path}: rotors: no rotor named '{name}'; has {[r['name'] for r in aircraft['rotors']]}")
     return rotor
+
 
 def load_mission(path: str | Path) -> dict:
     """Read and validate one mission file."""

@@ -136,8 +136,9 @@ def read_metadata(path: str | os.PathLike) -> dict[str, object]:
 
 def signal_arrays(table: pd.DataFrame, groups=None, what: str = "pressure signals"
                   ) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
-    """Signal artifact → arrays (inverse of :func:`nps.acoustics.signals_table`): (observer ids (sorted, int32), time_s (N,), group → p_Pa (n_obs, N)).
+    """Signal artifact → (observer ids (sorted, int32), time_s (N,), group → p_Pa (n_obs, N)).
 
+    The inverse of :func:`nps.acoustics.signals_table`.
     Every observer needs every group on one shared uniform time grid. ``groups``: the groups
     allowed (default any). Tables in the canonical order of ``signals_table`` (observer,
     then group, then time) are reshaped without sorting; others are sorted first.
@@ -177,11 +178,12 @@ def signal_arrays(table: pd.DataFrame, groups=None, what: str = "pressure signal
     return obs_values.astype(np.int32), times[0].copy(), {g: p[:, k, :] for k, g in enumerate(grp_values)}
 
 
-def signals_path(directory: str | os.PathLike, rotor: str) -> Path:
-    """Signal table of ``rotor`` in a per-aircraft signals directory (``acoustics/`` or ``hsi/{obsset}_{variant}``)."""
-    return Path(directory) / f"{rotor}.parquet"
+def rotor_path(directory: str | os.PathLike, rotor: str, suffix: str = "") -> Path:
+    """Artifact ``{rotor}{suffix}.parquet`` in a per-aircraft directory holding one file per rotor
+    (``bvi/``, ``wake/``, ``acoustics/{obsset}_{variant}/``, ``hsi/{obsset}_{variant}/``)."""
+    return Path(directory) / f"{rotor}{suffix}.parquet"
 
 
 def read_signals(directory: str | os.PathLike, rotors) -> dict[str, pd.DataFrame]:
     """Rotor name → signal table (columns :data:`SIGNAL_COLUMNS`) of every rotor in a signals directory."""
-    return {r: read_table(signals_path(directory, r), required=SIGNAL_COLUMNS) for r in rotors}
+    return {r: read_table(rotor_path(directory, r), required=SIGNAL_COLUMNS) for r in rotors}

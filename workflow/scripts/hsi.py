@@ -1,12 +1,11 @@
 """Snakemake script: HSI processing of every rotor's signals for one observer set -> hsi/ artifacts."""
 
 from contextlib import redirect_stderr
-from pathlib import Path
 
 import numba
 
 from nps.hsi import OBSERVER_COLUMNS, process
-from nps.io import read_signals, read_table, signals_path, write_table
+from nps.io import read_signals, read_table, rotor_path, write_table
 
 with open(snakemake.log[0], "w") as log, redirect_stderr(log):
     numba.set_num_threads(max(1, min(snakemake.threads, numba.config.NUMBA_NUM_THREADS)))
@@ -21,7 +20,6 @@ with open(snakemake.log[0], "w") as log, redirect_stderr(log):
             raise ValueError(f"{snakemake.input.trim}: expected one row for rotor '{rotor}', found {len(row)}")
         result = process(signals[rotor], observers, row.iloc[0].to_dict())
         meta = {"rotor": rotor, "obsset": w.obsset, "variant": w.variant, "inputs": list(snakemake.input)}
-        out = signals_path(snakemake.output[0], rotor)
-        write_table(result.signals, out, stage="hsi", metadata=meta)
-        write_table(result.diagnostics, Path(out).with_name(f"{rotor}_diagnostics.parquet"), stage="hsi", metadata=meta)
+        write_table(result.signals, rotor_path(snakemake.output[0], rotor), stage="hsi", metadata=meta)
+        write_table(result.diagnostics, rotor_path(snakemake.output[0], rotor, "_diagnostics"), stage="hsi", metadata=meta)
         print(f"rotor {rotor}:\n{result.diagnostics.describe().to_string()}", file=log)

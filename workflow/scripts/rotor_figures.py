@@ -3,7 +3,7 @@
 from contextlib import redirect_stderr
 from pathlib import Path
 
-from nps.io import read_table
+from nps.io import read_table, rotor_path
 from nps.plots.disk import loads_figure
 from nps.plots.wake import bvi_figure_from_tables, wake_figure_from_tables
 
@@ -17,8 +17,8 @@ with open(snakemake.log[0], "w") as log, redirect_stderr(log):
         loads_figure(disk, out / f"disk_{rotor}.png", rotation_sign=int(spec["rotation_sign"]),
                      title=f"{name} (flying toward the top)")
         if snakemake.params.wake:
-            wake_figure_from_tables(read_table(Path(snakemake.input.wake) / f"{rotor}.parquet"), disk, out / f"wake_{rotor}.png",
+            wake_figure_from_tables(read_table(rotor_path(snakemake.input.wake, rotor)), disk, out / f"wake_{rotor}.png",
                                     radius_m=float(spec["radius_m"]), title=f"{name}: tip vortices, blade 0 at ψ = 0")
-            bvi_figure_from_tables(disk, read_table(Path(snakemake.input.bvi) / f"{rotor}.parquet"), out / f"bvi_{rotor}.png",
+            bvi_figure_from_tables(disk, read_table(rotor_path(snakemake.input.bvi, rotor)), out / f"bvi_{rotor}.png",
                                    rotation_sign=int(spec["rotation_sign"]), title=f"{name} (flying toward the top)")
         print(f"rotor {rotor}: figures written", file=log)

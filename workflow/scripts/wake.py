@@ -6,6 +6,7 @@ from pathlib import Path
 import numba
 
 from nps.cli import bvi, wake
+from nps.io import rotor_path
 from nps.wake import WakeModel
 
 with open(snakemake.log[0], "w") as log, redirect_stderr(log):
@@ -17,9 +18,9 @@ with open(snakemake.log[0], "w") as log, redirect_stderr(log):
     meta = {"aircraft": w.aircraft, "segment": w.segment}
     for rotor, rotor_config in p.rotors.items():
         disk, summary = snakemake.input[f"disk_{rotor}"], snakemake.input[f"summary_{rotor}"]
-        done = wake.run(disk, summary, snakemake.input.trim, rotor, model, wake_dir / f"{rotor}.parquet",
+        done = wake.run(disk, summary, snakemake.input.trim, rotor, model, rotor_path(wake_dir, rotor),
                         vtk_dir=wake_dir / f"{rotor}_vtk", metadata=meta)
-        result = bvi.run(rotor_config, disk, summary, snakemake.input.trim, model, bvi_dir / f"{rotor}.parquet",
+        result = bvi.run(rotor_config, disk, summary, snakemake.input.trim, model, rotor_path(bvi_dir, rotor),
                          metadata=meta)
         print(f"rotor {rotor}: {len(done['table'])} wake nodes; peak |dU_P| = {abs(result.d_up_mps).max():.4g} m/s, "
               f"peak |dU_T| = {abs(result.d_ut_mps).max():.4g} m/s", file=log)
