@@ -18,6 +18,8 @@ ray leaves the source in direction n at emission distance r_e therefore hears, p
 
     L(n_b') = L_h(d, n_b) − 20 log10(r_e |n − M_h| / r_h) − α(f_b') r_e + G_b'    (1)
 
+(n_b a source band, n_b' = n_b + δ its received position):
+
 * spherical spreading from the co-moving reference distance to r_e (the mean square over a
   received period is the co-moving one times (r_e,h / r_e)²: the Doppler compression of the
   waveform does not change its mean square);
@@ -25,8 +27,10 @@ ray leaves the source in direction n at emission distance r_e therefore hears, p
   emission, a shift of δ = −10 log10(1 − M·n) band numbers; each band's energy, taken as
   uniform in log-frequency over the band, is split between the two receiver bands it overlaps
   (weights 1 − frac(δ), frac(δ)); energy shifted outside the band range is dropped;
-* ISO 9613-1 absorption α (dB/m) at the receiver band's mid-band frequency (the frequency in
-  the air at rest) with the atmosphere of the emitting segment, over the straight ray r_e;
+* ISO 9613-1 absorption α (dB/m) with the atmosphere of the emitting segment over the straight
+  ray r_e, at each source band's received frequency (the frequency in the air at rest, band
+  number n + δ; α is taken at the mid-band frequencies and interpolated linearly in band
+  number, exact when δ = 0);
 * ground reflection G (dB) from an image source mirrored in z = 0 (same emission point and
   level for the reflected ray; ratio of path lengths a = r_1/r_2, path difference Δr = r_2 − r_1):
   band-averaged coherent sum G = 10 log10(1 + a²|Q|² + 2a|Q| ⟨cos(kΔr + φ_Q)⟩), the average of
@@ -147,7 +151,7 @@ class Trajectory:
     time_s: np.ndarray
     position_m: np.ndarray
     hemisphere_index: np.ndarray
-    atmospheres: tuple[AtmosphereState, ...]
+    atmospheres: tuple[AtmosphereState | None, ...]
 
     def __post_init__(self):
         t = np.asarray(self.time_s, float)
@@ -335,17 +339,21 @@ def _propagate_kernel(rec, times, c, knot_t, knot_p, vel, hemi_of_seg, h_levels,
             a0 = a0 % n_az
             a1 = (a0 + 1) % n_az
             spread = 20.0 * np.log10(re * mlen / h_radius[h])
-            for b in range(n_b):
-                lo = (1.0 - wa) * h_levels[h, e0, a0, b] + wa * h_levels[h, e0, a1, b]
-                hi = (1.0 - wa) * h_levels[h, e0 + 1, a0, b] + wa * h_levels[h, e0 + 1, a1, b]
-                lev = (1.0 - we) * lo + we * hi
-                src[b] = np.exp(_DB_TO_NEPER * (lev - spread)) if lev > LEVEL_FLOOR_DB else 0.0
-                out[b] = 0.0
             # Doppler: shift by δ bands with the trajectory's Mach number toward the receiver
             mr = (vel[k, 0] * n0 + vel[k, 1] * n1 + vel[k, 2] * n2) / c
             delta = -10.0 * np.log10(1.0 - mr)
             shift = int(np.floor(delta))
             frac = delta - shift
+            for b in range(n_b):
+                lo = (1.0 - wa) * h_levels[h, e0, a0, b] + wa * h_levels[h, e0, a1, b]
+                hi = (1.0 - wa) * h_levels[h, e0 + 1, a0, b] + wa * h_levels[h, e0 + 1, a1, b]
+                lev = (1.0 - we) * lo + we * hi
+                # absorption at the band's received frequency (band number b + δ, α linear between bands)
+                q = min(max(b + shift, 0), n_b - 2)
+                wq = min(max(b + delta - q, 0.0), 1.0)
+                att = (1.0 - wq) * alpha[k, q] + wq * alpha[k, q + 1]
+                src[b] = np.exp(_DB_TO_NEPER * (lev - spread - att * re)) if lev > LEVEL_FLOOR_DB else 0.0
+                out[b] = 0.0
             for b in range(n_b):
                 t0 = b + shift
                 if 0 <= t0 < n_b:
@@ -368,7 +376,7 @@ def _propagate_kernel(rec, times, c, knot_t, knot_p, vel, hemi_of_seg, h_levels,
             sin_lo = np.sin(k_edge[0] * dr)
             la_ms = 0.0
             for b in range(n_b):
-                ms = out[b] * np.exp(-_DB_TO_NEPER * alpha[k, b] * re)
+                ms = out[b]
                 if ground_kind > 0:
                     qa = 1.0
                     qp = 0.0
@@ -449,7 +457,8 @@ def propagate(hemispheres, trajectory: Trajectory, receivers, time_s, speed_of_s
     c = float(speed_of_sound_mps)
     info = third_octave_bands(bands)
     centres = info["center_hz"]
-    alpha = np.array([absorption_db_per_m(centres, a.temperature_k, a.relative_humidity_pct, a.pressure_pa)
+    alpha = np.array([np.zeros(bands.size) if a is None else
+                      absorption_db_per_m(centres, a.temperature_k, a.relative_humidity_pct, a.pressure_pa)
                       for a in trajectory.atmospheres])
     a_weight = 10.0 ** (a_weighting_db(centres) / 10.0)
     k_edge = 2.0 * np.pi * np.append(info["lower_hz"], info["upper_hz"][-1]) / c
