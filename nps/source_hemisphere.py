@@ -12,7 +12,7 @@ fly the aircraft's noise along any path (nps.propagation). Schema (units in the 
 | ``band`` | int32 | 1/3-octave band number n (f_m = 1000·10^(n/10) Hz), −20 (10 Hz) … 10 (10 kHz) |
 | ``center_hz`` | float64 | exact mid-band frequency |
 | ``level_db`` | float64 | band level, dB re 20 µPa, at ``radius_m``, **without** air absorption |
-| ``radius_m`` | float64 | radius of the hemisphere (10 R of the reference rotor) |
+| ``radius_m`` | float64 | reference radius of the levels (10 R of the reference rotor) |
 | ``vel_x_mps``, ``vel_z_mps`` | float64 | aircraft horizontal and climb speed when computed |
 | ``speed_of_sound_mps`` | float64 | sound speed of the computation |
 
@@ -26,6 +26,14 @@ un-absorbed exactly afterwards (a band holds lines with different α, rotors hav
 distances). The product is therefore built from the unabsorbed signals with the metrics
 stage's own function (:func:`nps.metrics.metrics_tables` with ``atmosphere=None``), so tonal,
 HSI and broadband levels are exactly those of the metrics artifacts without absorption.
+
+Radius: one hemisphere stands for all rotors about one centre, exact only in the far field of
+the whole rotor system. At 10 R the helicopter's tail rotor (1.3 R behind the main hub) is seen
+from a direction up to 7° off and 5 % nearer than from the centre; the direct-F1A cross-check
+(tests/validation/test_footprint_f1a.py, docs/footprint.md) misses by up to 1.8 dB with a 10 R
+hemisphere and by at most 0.6 dB with a 20 R one. The product is therefore computed on a
+far-field hemisphere (20 R, observer set ``source`` of config/config.yaml) and referred back to
+the 10 R reference by spherical spreading (``reference_radius_m``).
 """
 
 from __future__ import annotations
@@ -38,6 +46,7 @@ import pandas as pd
 from nps.frames import observer_direction
 from nps.metrics import metrics_tables
 from nps.propagation import Hemisphere
+from nps.spectra import LEVEL_FLOOR_DB
 
 PRODUCT_BANDS = np.arange(-20, 11)
 """Bands of the product: 10 Hz (−20) to 10 kHz (10)."""
@@ -70,11 +79,14 @@ def source_hemisphere_table(
     solidity: Mapping[str, float],
     hsi_signals: Mapping[str, pd.DataFrame] | None = None,
     broadband_on: bool = True,
+    reference_radius_m: float | None = None,
 ) -> pd.DataFrame:
     """Source-hemisphere product (module doc) from the hemisphere set's signals of every rotor.
 
     Arguments as :func:`nps.metrics.metrics_tables` (signals without absorption are computed
     there with ``atmosphere=None``); ``observers`` must be a hemisphere moving with the aircraft.
+    ``reference_radius_m``: when given, the levels heard at the observers' radius r are referred
+    to this radius by spherical spreading (+20 log10(r / r_ref); bands at the floor stay there).
     """
     for col in ("vx_mps", "vy_mps", "vz_mps"):
         if col not in observers.columns:
@@ -84,7 +96,13 @@ def source_hemisphere_table(
         raise ValueError("observers: a source hemisphere needs observers moving with the aircraft (moving: true)")
     radius = hemisphere_radius_m(observers)
     _, bands, _ = metrics_tables(signals, observers, trim, solidity, None, hsi_signals, broadband_on)
-    keep = bands[(bands["band"] >= PRODUCT_BANDS[0]) & (bands["band"] <= PRODUCT_BANDS[-1])]
+    keep = bands[(bands["band"] >= PRODUCT_BANDS[0]) & (bands["band"] <= PRODUCT_BANDS[-1])].copy()
+    if reference_radius_m is not None:
+        if not (np.isfinite(reference_radius_m) and reference_radius_m > 0):
+            raise ValueError(f"reference_radius_m must be positive, got {reference_radius_m}")
+        level = keep["level_db"].to_numpy()
+        keep["level_db"] = np.where(level > LEVEL_FLOOR_DB, level + 20.0 * np.log10(radius / reference_radius_m), level)
+        radius = float(reference_radius_m)
     angles = observers.set_index("observer")[["azimuth_deg", "elevation_deg"]]
     out = keep.join(angles, on="observer")
     out = out.assign(radius_m=radius, vel_x_mps=float(velocity[0]), vel_z_mps=float(velocity[2]),

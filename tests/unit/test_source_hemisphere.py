@@ -23,7 +23,7 @@ def test_product_levels_unabsorbed_and_round_trip():
     band −9) at every observer gives 10 log10(1.5²/2/p_ref²) = 94.5 dB in that band, exactly,
     although ISO 9613-1 absorption over 50 m would remove 0.03 dB: the product is unabsorbed.
     The observers' azimuth depends on the level so the round trip to the (el, az) grid is checked;
-    the radius is the observer set's 10 R = 50 m."""
+    the radius is the observer set's 10 R = 50 m; referred to 25 m every audible band gains 6.02 dB."""
     velocity = (40.0, 0.0, -2.0)
     obs = hemisphere([0.0, 0.0, 0.0], 50.0, 4, 8, velocity)
     period = 2 * np.pi / 30.0
@@ -48,6 +48,12 @@ def test_product_levels_unabsorbed_and_round_trip():
     assert hemi.elevation_deg.tolist() == [-90.0, -60.0, -30.0, 0.0]
     j = list(PRODUCT_BANDS).index(-9)
     assert hemi.levels_db[3, :, j] == pytest.approx(10 * np.log10((1.5 * (1 + np.arange(8) / 8)) ** 2 / 2 / P_REF_PA**2))
+    near = source_hemisphere_table({"main": pd.concat(rows, ignore_index=True)}, obs, _trim(velocity), {"main": 0.08},
+                                   broadband_on=False, reference_radius_m=25.0)
+    assert near["radius_m"].iloc[0] == 25.0
+    moved = near["level_db"].to_numpy() - table["level_db"].to_numpy()
+    audible = table["level_db"].to_numpy() > -100.0
+    assert moved[audible] == pytest.approx(20 * np.log10(2.0)) and np.all(moved[~audible] == 0.0)
     with pytest.raises(ValueError, match="moving with the aircraft"):
         source_hemisphere_table({"main": pd.concat(rows)}, hemisphere([0.0, 0.0, 0.0], 50.0, 4, 8), _trim(velocity),
                                 {"main": 0.08}, broadband_on=False)
