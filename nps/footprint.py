@@ -97,6 +97,14 @@ def contour_areas(values_db: np.ndarray, cell_area_m2: float, levels_db=CONTOUR_
     return np.array([np.count_nonzero(v >= level) * cell_area_m2 for level in levels_db])
 
 
+def touches_edge(values_db: np.ndarray, levels_db=CONTOUR_LEVELS_DB) -> np.ndarray:
+    """For a grid (n_x, n_y) of levels: does the region ≥ each level reach the grid's edge (then
+    its area is only a lower bound: the contour is not closed inside the grid)?"""
+    v = np.asarray(values_db, float)
+    edge = np.concatenate([v[0], v[-1], v[:, 0], v[:, -1]])
+    return np.array([bool(np.any(edge >= level)) for level in levels_db])
+
+
 @dataclass(frozen=True)
 class Footprint:
     """Footprint of one aircraft's mission: grid metrics, microphone histories and metrics."""
@@ -104,7 +112,7 @@ class Footprint:
     grid: pd.DataFrame          # one row per grid receiver
     microphones: pd.DataFrame   # one row per microphone
     histories: pd.DataFrame     # microphone × record: time_s, la_db, pnlt_db, leg (emitting leg, −1 none)
-    areas: pd.DataFrame         # metric × level
+    areas: pd.DataFrame         # metric × level: area_km2, open (reaches the grid edge: a lower bound)
     segments: list[str]         # mission segment id of each leg (columns leg{k}_* of ``grid``)
 
 
@@ -144,9 +152,11 @@ def mission_footprint(path: FlightPath, hemispheres: Mapping[str, Hemisphere], g
         grid_table[f"leg{k}_lamax_db"] = grid_m["segment_lamax_db"][:, k]
         grid_table[f"leg{k}_sel_db"] = grid_m["segment_sel_db"][:, k]
     cell = grid.spacing_m**2
-    areas = pd.DataFrame([{"metric": metric, "level_db": level, "area_km2": area / 1e6}
+    shape = (grid.x_m.size, grid.y_m.size)
+    areas = pd.DataFrame([{"metric": metric, "level_db": level, "area_km2": area / 1e6, "open": bool(is_open)}
                           for metric in ("sel_db", "lamax_db")
-                          for level, area in zip(levels_db, contour_areas(grid_table[metric], cell, levels_db))])
+                          for level, area, is_open in zip(levels_db, contour_areas(grid_table[metric], cell, levels_db),
+                                                          touches_edge(grid_table[metric].to_numpy().reshape(shape), levels_db))])
     mic_table = pd.DataFrame(columns=["microphone"])
     histories = pd.DataFrame(columns=["microphone", "time_s", "la_db", "pnlt_db", "leg"])
     if mics.size:

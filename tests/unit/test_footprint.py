@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from nps.footprint import FootprintError, GroundGrid, contour_areas, exposure_metrics, mission_footprint
+from nps.footprint import FootprintError, GroundGrid, contour_areas, exposure_metrics, mission_footprint, touches_edge
 from nps.propagation import Ground, Hemisphere, Trajectory, propagate
 from nps.spectra import LEVEL_FLOOR_DB
 from nps.trajectory import FlightPath, Leg
@@ -62,6 +62,10 @@ def test_contour_areas_and_grid():
     assert grid.points().shape == (11 * 11, 3)
     values = np.where(np.abs(grid.points()[:, 1]) <= 20.0, 72.0, 50.0)
     assert contour_areas(values, 100.0).tolist() == [5 * 11 * 100.0] * 3 + [0.0, 0.0]
+    assert touches_edge(values.reshape(11, 11)).tolist() == [True, True, True, False, False]
+    peak = np.full((11, 11), 50.0)
+    peak[5, 5] = 90.0
+    assert not touches_edge(peak).any()
     with pytest.raises(FootprintError, match="spacing_m"):
         GroundGrid((0.0, 1.0), (0.0, 1.0), 0.0)
 
