@@ -1,4 +1,4 @@
-"""Unit tests of nps.cli.observers: set centre, directions of any set, artifact and CLI errors."""
+"""Observer-set stage: set centre, directions of any set, artifact and CLI errors (nps.observers, nps.stages.observers)."""
 
 import numpy as np
 import pandas as pd
@@ -7,9 +7,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from nps.__main__ import main as nps_main
-from nps.cli.observers import lift_rotors, observer_centre, rotor_roles, run, with_directions
+from nps.observers import ObserverError, lift_rotors, observer_centre, rotor_roles, with_directions
+from nps.stages.observers import run as run_observers
 from nps.frames import observer_direction
-from nps.io import ArtifactError, read_metadata, read_table, write_table
+from nps.io import read_metadata, read_table, write_table
+from tests.trim_tables import complete_trim
 
 
 def trim_table(hubs: dict, velocity=(30.0, 0.0, -2.0)) -> pd.DataFrame:
@@ -28,7 +30,7 @@ def test_centre_is_main_hub_for_helicopter_and_midpoint_for_tandem():
     assert np.allclose(observer_centre(trim, lift_rotors(heli)), [0.1, 0.0, 1.8])
     tandem = trim_table({"front": (5.67, 0.0, 1.6), "rear": (-6.27, 0.0, 2.6)})
     assert np.allclose(observer_centre(tandem, ["front", "rear"]), [-0.3, 0.0, 2.1])
-    with pytest.raises(ArtifactError, match="rotor"):
+    with pytest.raises(ObserverError, match="rotor"):
         observer_centre(tandem, ["main"])
 
 
@@ -46,14 +48,21 @@ def test_directions_invert_the_map_convention(az, el, dist):
 def test_run_writes_every_set_kind_with_directions(tmp_path):
     """Hemisphere about the main hub at 10 R moving with the aircraft; ground grid gets directions too."""
     trim_path = tmp_path / "trim.parquet"
-    write_table(trim_table({"main": (0.0, 0.0, 1.8), "tail": (-9.9, 0.0, 1.9)}), trim_path, stage="test")
-    hemi = run({"kind": "hemisphere", "radius_R": 10.0, "n_elevation": 3, "n_azimuth": 4}, trim_path, {"main": "lift", "tail": "antitorque"},
-               7.62, tmp_path / "hemi.parquet", {"aircraft": "x"})
+    write_table(complete_trim(trim_table({"main": (0.0, 0.0, 1.8), "tail": (-9.9, 0.0, 1.9)})), trim_path, stage="test")
+
+    def run(spec, roles, out):
+        params = {"spec": spec, "rotor_roles": roles, "reference_radius_m": 7.62, "aircraft": "x", "segment": "seg1",
+                  "obsset": out.stem}
+        run_observers({"trim": trim_path}, {"observers": out}, params)
+        return read_table(out)
+
+    hemi = run({"kind": "hemisphere", "radius_R": 10.0, "n_elevation": 3, "n_azimuth": 4}, {"main": "lift", "tail": "antitorque"},
+               tmp_path / "hemi.parquet")
     rel = hemi[["x_m", "y_m", "z_m"]].to_numpy() - [0.0, 0.0, 1.8]
     assert np.allclose(np.linalg.norm(rel, axis=1), 76.2) and (hemi["vx_mps"] == 30.0).all()
     assert read_metadata(tmp_path / "hemi.parquet")["centre_rotors"] == ["main"]
     grid = run({"kind": "ground_grid", "height_below_m": 150.0, "x_range_m": [-300.0, 300.0], "y_range_m": [-300.0, 300.0],
-                "n_x": 3, "n_y": 3, "moving": False}, trim_path, {"main": "lift"}, 7.62, tmp_path / "ground.parquet", {})
+                "n_x": 3, "n_y": 3, "moving": False}, {"main": "lift"}, tmp_path / "ground.parquet")
     below = read_table(tmp_path / "ground.parquet").set_index(["grid_x_m", "grid_y_m"])
     assert below.loc[(0.0, 0.0), "elevation_deg"] == pytest.approx(-90.0)
     # ahead of and to starboard of the hub: azimuth 180 deg and 90 deg
@@ -67,4 +76,4 @@ def test_cli_names_a_missing_set(tmp_path, capsys):
     config.write_text("observer_sets:\n  hemisphere: {kind: hemisphere, radius_R: 10.0, n_elevation: 3, n_azimuth: 4}\n")
     code = nps_main(["observers", "--config", str(config), "--set", "carpet", "--aircraft", "config/aircraft/helicopter.yaml",
                      "--trim", str(tmp_path / "trim.parquet"), "--out", str(tmp_path / "o.parquet")])
-    assert code == 1 and "no set named 'carpet'" in capsys.readouterr().err
+    assert code == 2 and "no set named 'carpet'" in capsys.readouterr().err

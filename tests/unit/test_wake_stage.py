@@ -1,4 +1,4 @@
-"""Stand-alone wake and BVI stages: CLI chain trim → loads → wake → bvi, artifacts and VTK."""
+"""Stand-alone wake stage: command chain trim → loads → wake (wake geometry, VTK, BVI loads)."""
 
 import json
 
@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 
 from nps import bvi, vtk, wake
-from nps.cli import bvi as bvi_cli
 from nps.cli import loads as loads_cli
 from nps.cli import trim as trim_cli
 from nps.cli import wake as wake_cli
@@ -50,14 +49,10 @@ def chain(tmp_path_factory, repo_root):
     assert trim_cli.main(["--aircraft", aircraft, "--mission", str(repo_root / "config/missions/demo.yaml"),
                           "--segment", "seg3", "--out", str(d / "trim.parquet")]) == 0
     assert loads_cli.main(["--aircraft", aircraft, "--rotor", "main", "--trim", str(d / "trim.parquet"),
-                           "--n-psi", "72", "--n-r", "12", "--out", str(d / "loads/main.parquet")]) == 0
-    model = ["--steps-per-rev", "72", "--revolutions", "2"]
-    assert wake_cli.main(["--loads", str(d / "loads/main.parquet"), "--trim", str(d / "trim.parquet"), "--rotor", "main",
-                          "--out", str(d / "wake/main.parquet"), "--vtk-dir", str(d / "vtk"), "--step-deg", "30",
-                          "--figure", str(d / "wake.png"), *model]) == 0
-    assert bvi_cli.main(["--aircraft", aircraft, "--rotor", "main", "--loads", str(d / "loads/main.parquet"),
-                         "--trim", str(d / "trim.parquet"), "--out", str(d / "bvi/main.parquet"),
-                         "--figure", str(d / "bvi.png"), *model]) == 0
+                           "--n-psi", "72", "--n-r", "12", "--out-dir", str(d / "loads")]) == 0
+    assert wake_cli.main(["--aircraft", aircraft, "--rotor", "main", "--trim", str(d / "trim.parquet"), "--loads-dir",
+                          str(d / "loads"), "--wake-dir", str(d / "wake"), "--bvi-dir", str(d / "bvi"), "--step-deg", "30",
+                          "--steps-per-rev", "72", "--revolutions", "2"]) == 0
     return d
 
 
@@ -80,11 +75,11 @@ def test_wake_artifact(chain):
 def test_vtk_series_matches_artifact(chain):
     """Each VTK step holds the artifact's nodes (float32) as 4 vortex polylines + 4 blade
     lines; the series index lists the steps with their times."""
-    series = json.loads((chain / "vtk/main.vtk.series").read_text())
+    series = json.loads((chain / "wake/main_vtk/main.vtk.series").read_text())
     table = read_table(chain / "wake/main.parquet")
     assert [f["name"] for f in series["files"]] == [f"main_{i:04d}.vtk" for i in range(3)]
     for step, entry in enumerate(series["files"]):
-        points, lines, rest = _read_legacy_vtk(chain / "vtk" / entry["name"])
+        points, lines, rest = _read_legacy_vtk(chain / "wake/main_vtk" / entry["name"])
         nodes = table[table.step == step].sort_values(["blade", "node"])
         assert entry["time"] == pytest.approx(nodes.time_s.iloc[0])
         assert np.allclose(points[: len(nodes)], nodes[["x_m", "y_m", "z_m"]].to_numpy(), rtol=1e-6, atol=1e-4)
@@ -92,23 +87,22 @@ def test_vtk_series_matches_artifact(chain):
         assert b"SCALARS age_rad float 1" in rest and b"SCALARS kind int 1" in rest
 
 
-def test_bvi_artifact_and_figures(chain):
+def test_bvi_artifact(chain):
     loads = read_table(chain / "loads/main.parquet")
     out = read_table(chain / "bvi/main.parquet", required=bvi.DISK_COLUMNS)
     assert list(out.columns) == list(loads.columns)
     assert np.array_equal(out.theta_rad, loads.theta_rad)
     assert not np.array_equal(out.fz_N_per_m, loads.fz_N_per_m)
-    assert (chain / "wake.png").stat().st_size > 10_000 and (chain / "bvi.png").stat().st_size > 10_000
 
 
 def test_cli_reports_bad_inputs(chain, capsys, repo_root):
-    code = wake_cli.main(["--loads", str(chain / "loads/main.parquet"), "--trim", str(chain / "trim.parquet"),
-                          "--rotor", "nosuch", "--out", str(chain / "x.parquet")])
-    assert code == 1
-    assert "rotor 'nosuch'" in capsys.readouterr().err
-    code = bvi_cli.main(["--aircraft", str(repo_root / "config/aircraft/helicopter.yaml"), "--rotor", "main", "--loads",
-                         str(chain / "missing.parquet"), "--trim", str(chain / "trim.parquet"), "--out", str(chain / "y.parquet")])
-    assert code == 1
+    aircraft = str(repo_root / "config/aircraft/helicopter.yaml")
+    args = ["--aircraft", aircraft, "--trim", str(chain / "trim.parquet"), "--wake-dir", str(chain / "w2"), "--bvi-dir",
+            str(chain / "b2")]
+    assert wake_cli.main(args + ["--loads-dir", str(chain / "loads"), "--rotor", "nosuch"]) == 2
+    assert "no rotor named 'nosuch'" in capsys.readouterr().err
+    assert wake_cli.main(args + ["--loads-dir", str(chain / "missing"), "--rotor", "main"]) == 2
+    assert "artifact not found" in capsys.readouterr().err
 
 
 def test_polydata_rejects_bad_input():
@@ -116,3 +110,13 @@ def test_polydata_rejects_bad_input():
         vtk.polydata_bytes(np.array([[0, 0, np.nan]]), [np.array([0])], {}, {}, "t")
     with pytest.raises(ValueError, match="out of range"):
         vtk.polydata_bytes(np.zeros((2, 3)), [np.array([0, 2])], {}, {}, "t")
+
+
+def test_rotor_figures_stage_draws_disk_wake_and_bvi(chain):
+    """The rotor_figures stage draws the three figure kinds of a rotor from the chain's directories."""
+    from nps.stages.rotor_figures import run
+
+    run({"loads": chain / "loads", "wake": chain / "wake", "bvi": chain / "bvi"}, {"figures": chain / "figures"},
+        {"rotors": {"main": {"rotation_sign": 1, "radius_m": 7.62}}, "aircraft": "helicopter", "segment": "seg3"})
+    for kind in ("disk", "wake", "bvi"):
+        assert (chain / "figures" / f"{kind}_main.png").stat().st_size > 10_000

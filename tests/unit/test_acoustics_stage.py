@@ -1,4 +1,4 @@
-"""Unit tests of nps.cli.rotor_acoustics: the common time grid of an aircraft's rotors and errors."""
+"""Acoustics stage: the common time grid of an aircraft's rotors, errors and the command (nps.stages.acoustics)."""
 
 import numpy as np
 import pandas as pd
@@ -6,8 +6,13 @@ import pytest
 
 from nps.__main__ import main as nps_main
 from nps.acoustics import AcousticsError
-from nps.cli.rotor_acoustics import common_grid, rotor_signals, run
-from nps.io import ArtifactError, read_table, write_table
+from nps.acoustics import Observers
+from nps.io import ArtifactError, read_table, rotor_path, write_table
+from nps.signals import signals_table
+from nps.sources import common_grid, radiate_rotor
+from nps.stages.acoustics import run
+from nps.trim import trim_row
+from tests.trim_tables import complete_trim
 from nps.observers import points
 from nps.sources import ThicknessModel
 
@@ -41,6 +46,14 @@ def observers() -> pd.DataFrame:
     return points([[30.0, 5.0, -3.0], [-10.0, -25.0, -8.0], [0.0, 0.0, -20.0]])
 
 
+def rotor_signals(disk, trim, obs_table, rotor, reference, samples, thickness, hinge_offset_m) -> pd.DataFrame:
+    """Signal table of one rotor on the reference rotor's grid, as the acoustics stage computes it."""
+    grid = common_grid(trim_row(trim, reference), samples)
+    obs = Observers(obs_table[["x_m", "y_m", "z_m"]].to_numpy(float), obs_table[["vx_mps", "vy_mps", "vz_mps"]].to_numpy(float))
+    pressure = radiate_rotor(disk, trim_row(trim, rotor), obs, grid, thickness=thickness, hinge_offset_m=hinge_offset_m)
+    return signals_table(obs_table["observer"].to_numpy(), ("loading", "thickness"), pressure, grid, total=False)
+
+
 def test_faster_rotor_lands_on_reference_grid_at_its_own_harmonics():
     """A rotor turning 3× faster, on the reference (first) rotor's revolution: only harmonics 12k (its
     4-blade passage) carry energy (outside: < 1e-20 of the total; its first one > 5 %), the grid is [0, T_ref)
@@ -65,32 +78,32 @@ def test_reference_rotor_signal_has_blade_passage_harmonics_only():
 
 
 def test_errors_name_the_rotor_file_and_field(tmp_path):
-    with pytest.raises(ArtifactError, match="rotor 'tail'"):
+    with pytest.raises(ValueError, match="rotor 'tail'"):
         rotor_signals(hover_disk(), trim_rows(), observers(), "tail", "main", 64, ThicknessModel(), 0.0)
     with pytest.raises(AcousticsError, match="samples_per_rev"):
-        common_grid(trim_rows(), "main", 4)
-    write_table(hover_disk().drop(columns="thickness_m"), tmp_path / "disk.parquet", stage="test")
-    write_table(trim_rows(), tmp_path / "trim.parquet", stage="test")
+        common_grid(trim_row(trim_rows(), "main"), 4)
+    write_table(hover_disk().drop(columns="thickness_m"), tmp_path / "disks" / "main.parquet", stage="test")
+    write_table(complete_trim(trim_rows()), tmp_path / "trim.parquet", stage="test")
     write_table(observers(), tmp_path / "obs.parquet", stage="test")
+    params = {"rotors": ["main"], "hinge_offsets_m": {"main": 0.0}, "thickness": "dual_compact", "chord_fractions": [0.13, 0.87],
+              "samples_per_rev": 64, "aircraft": "x", "segment": "seg1", "obsset": "obs", "variant": "base"}
     with pytest.raises(ArtifactError, match="thickness_m"):
-        run(tmp_path / "disk.parquet", tmp_path / "trim.parquet", tmp_path / "obs.parquet", "main", "main", 64,
-            ThicknessModel(), 0.0, tmp_path / "out.parquet", {})
-    assert not (tmp_path / "out.parquet").exists()
+        run({"disks": tmp_path / "disks", "trim": tmp_path / "trim.parquet", "observers": tmp_path / "obs.parquet"},
+            {"signals": tmp_path / "out"}, params)
+    assert not rotor_path(tmp_path / "out", "main").exists()
 
 
 def test_cli_round_trip(tmp_path, capsys):
-    """``python -m nps rotor_acoustics`` writes the contract's columns; a bad rotor name exits 1 with a message."""
-    write_table(hover_disk(), tmp_path / "disk.parquet", stage="test")
-    trim = trim_rows()
-    trim.loc[0, "rotor"] = "main"
-    write_table(trim, tmp_path / "trim.parquet", stage="test")
+    """``python -m nps acoustics`` writes the contract's columns; a bad rotor name exits 2 with one line."""
+    write_table(hover_disk(), tmp_path / "disks" / "main.parquet", stage="test")
+    write_table(complete_trim(trim_rows()), tmp_path / "trim.parquet", stage="test")
     write_table(observers(), tmp_path / "obs.parquet", stage="test")
-    args = ["rotor_acoustics", "--disk", str(tmp_path / "disk.parquet"), "--trim", str(tmp_path / "trim.parquet"),
+    args = ["acoustics", "--disks", str(tmp_path / "disks"), "--trim", str(tmp_path / "trim.parquet"),
             "--observers", str(tmp_path / "obs.parquet"), "--aircraft", "config/aircraft/helicopter.yaml",
-            "--samples-per-rev", "64", "--out", str(tmp_path / "p.parquet")]
+            "--samples-per-rev", "64", "--out-dir", str(tmp_path / "p")]
     assert nps_main(args + ["--rotor", "main"]) == 0
-    out = read_table(tmp_path / "p.parquet")
+    out = read_table(tmp_path / "p" / "main.parquet")
     assert list(out.columns) == ["observer", "group", "time_s", "p_Pa"] and len(out) == 3 * 2 * 64
     assert np.isfinite(out["p_Pa"]).all() and out["p_Pa"].abs().max() > 0
-    assert nps_main(args + ["--rotor", "rotor9"]) == 1
+    assert nps_main(args + ["--rotor", "rotor9"]) == 2
     assert "no rotor named 'rotor9'" in capsys.readouterr().err
