@@ -94,20 +94,26 @@ class Sections:
 
 
 @dataclass(frozen=True)
-class Radiation:
-    """Source→observer geometry per element (broadcasts to S): r_e (m), Θ_e, Φ_e (rad)."""
+class Directivity:
+    """Source→observer distance r_e (m) and the directivity factors D̄_h (eq. B1), D̄_l (eq. B2).
+
+    Broadcast to the sections' shape S. Build them from the angles with :func:`directivity`; a
+    rotor average may pass factors averaged over an azimuth interval (both enter the band
+    mean-square pressure linearly).
+    """
 
     distance_m: np.ndarray
-    theta_e_rad: np.ndarray
-    phi_e_rad: np.ndarray
+    high: np.ndarray
+    low: np.ndarray
 
     def __post_init__(self):
         r = np.asarray(self.distance_m, dtype=float)
         if not (np.all(np.isfinite(r)) and np.all(r > 0.0)):
-            raise ValueError("Radiation.distance_m must be finite and positive")
-        for name in ("theta_e_rad", "phi_e_rad"):
-            if not np.all(np.isfinite(np.asarray(getattr(self, name), dtype=float))):
-                raise ValueError(f"Radiation.{name} must be finite")
+            raise ValueError("Directivity.distance_m must be finite and positive")
+        for name in ("high", "low"):
+            value = np.asarray(getattr(self, name), dtype=float)
+            if not (np.all(np.isfinite(value)) and np.all(value >= 0.0)):
+                raise ValueError(f"Directivity.{name} must be finite and non-negative")
 
 
 # --------------------------------------------------------------------------------------------
@@ -180,6 +186,12 @@ def directivity_high(theta_e_rad, phi_e_rad, mach) -> np.ndarray:
 def directivity_low(theta_e_rad, phi_e_rad, mach) -> np.ndarray:
     """D̄_l, eq. (B2): sin²Θ_e sin²Φ_e / (1 + M cos Θ_e)⁴."""
     return np.sin(theta_e_rad) ** 2 * np.sin(phi_e_rad) ** 2 / (1.0 + np.asarray(mach) * np.cos(theta_e_rad)) ** 4
+
+
+def directivity(distance_m, theta_e_rad, phi_e_rad, mach) -> Directivity:
+    """Directivity of an observer at r_e (m), Θ_e, Φ_e (rad) from a section at Mach number M = U/c0."""
+    return Directivity(distance_m, directivity_high(theta_e_rad, phi_e_rad, mach),
+                       directivity_low(theta_e_rad, phi_e_rad, mach))
 
 
 # --------------------------------------------------------------------------------------------
@@ -283,21 +295,21 @@ def _scaled_msp(level_db):
     return P_REF_PA**2 * 10.0 ** (0.1 * level_db)
 
 
-def _columns(sections: Sections, radiation: Radiation, medium: Medium) -> dict[str, np.ndarray]:
+def _columns(sections: Sections, radiation: Directivity, medium: Medium) -> dict[str, np.ndarray]:
     """Element quantities as S + (1,) arrays (to broadcast against frequencies), α* in degrees."""
     col = {name: np.asarray(getattr(sections, name), dtype=float)[..., None]
            for name in ("chord_m", "span_m", "speed_mps", "te_thickness_m")}
     col["alpha_deg"] = np.degrees(np.abs(np.asarray(sections.alpha_rad, dtype=float)))[..., None]
     col["psi_deg"] = np.degrees(np.asarray(sections.te_angle_rad, dtype=float))[..., None]
     col["tripped"] = np.asarray(sections.tripped, dtype=bool)[..., None]
-    for name in ("distance_m", "theta_e_rad", "phi_e_rad"):
+    for name in ("distance_m", "high", "low"):
         col[name] = np.asarray(getattr(radiation, name), dtype=float)[..., None]
     col["mach"] = col["speed_mps"] / medium.speed_of_sound_mps
     col["reynolds"] = col["speed_mps"] * col["chord_m"] / medium.kinematic_viscosity_m2_s
     return col
 
 
-def tbl_te_msp(frequency_hz, sections: Sections, radiation: Radiation, medium: Medium) -> dict[str, np.ndarray]:
+def tbl_te_msp(frequency_hz, sections: Sections, radiation: Directivity, medium: Medium) -> dict[str, np.ndarray]:
     """TBL-TE pressure side, suction side and separation band MSP (Pa²), eq. (24)-(28).
 
     Unstalled (|α*| ≤ min(γ0, 12.5°)): SPL_p (25), SPL_s (26) and SPL_α (27) with D̄_h.
@@ -307,7 +319,7 @@ def tbl_te_msp(frequency_hz, sections: Sections, radiation: Radiation, medium: M
     f = np.asarray(frequency_hz, dtype=float)
     col = _columns(sections, radiation, medium)
     c, span, u, alpha, mach, re_c = (col[k] for k in ("chord_m", "span_m", "speed_mps", "alpha_deg", "mach", "reynolds"))
-    r_e, theta, phi = col["distance_m"], col["theta_e_rad"], col["phi_e_rad"]
+    r_e, d_h, d_l = col["distance_m"], col["high"], col["low"]
     nu = medium.kinematic_viscosity_m2_s
     bl = trailing_edge_thicknesses(c, re_c, alpha, col["tripped"])
     dsp, dss = bl["delta_star_p_m"], bl["delta_star_s_m"]
@@ -315,8 +327,6 @@ def tbl_te_msp(frequency_hz, sections: Sections, radiation: Radiation, medium: M
     st_1bar = 0.5 * (st_1 + st_2)
     kk1 = k1(re_c)
     kk2 = kk1 + k2_minus_k1(mach, alpha)
-    d_h = directivity_high(theta, phi, mach)
-    d_l = directivity_low(theta, phi, mach)
     geom = mach**5 * span / (r_e * r_e)
     st_p, st_s = f * dsp / u, f * dss / u
     stalled = alpha > stall_angle_deg(mach)
@@ -371,15 +381,15 @@ def g2(d) -> np.ndarray:
     )
 
 
-def lbl_vs_msp(frequency_hz, sections: Sections, radiation: Radiation, medium: Medium) -> np.ndarray:
+def lbl_vs_msp(frequency_hz, sections: Sections, radiation: Directivity, medium: Medium) -> np.ndarray:
     """LBL-VS band MSP (Pa²), eq. (53)-(60), with the untripped δ_p (eq. 5, 8); 0 on tripped sections."""
     f = np.asarray(frequency_hz, dtype=float)
     col = _columns(sections, radiation, medium)
     c, span, u, alpha, mach, re_c = (col[k] for k in ("chord_m", "span_m", "speed_mps", "alpha_deg", "mach", "reynolds"))
-    r_e, theta, phi = col["distance_m"], col["theta_e_rad"], col["phi_e_rad"]
+    r_e, d_h = col["distance_m"], col["high"]
     delta_p = c * bl_thickness_zero_alpha(re_c, False) * pressure_side_ratios(alpha)[0]
     st_peak = st1_prime(re_c) * 10.0 ** (-0.04 * alpha)
-    level = (10.0 * np.log10(delta_p * mach**5 * span * directivity_high(theta, phi, mach) / (r_e * r_e))
+    level = (10.0 * np.log10(delta_p * mach**5 * span * d_h / (r_e * r_e))
              + g1(f * delta_p / u / st_peak) + g2(re_c / reynolds_0(alpha)) + 171.04 - 3.03 * alpha)
     return np.where(col["tripped"], 0.0, _scaled_msp(level))
 
@@ -433,18 +443,18 @@ def g5(h_over_dstar, psi_deg, eta) -> np.ndarray:
     return np.minimum(np.minimum(value, 0.0), g5_psi14(0.25, eta))
 
 
-def bluntness_msp(frequency_hz, sections: Sections, radiation: Radiation, medium: Medium) -> np.ndarray:
+def bluntness_msp(frequency_hz, sections: Sections, radiation: Directivity, medium: Medium) -> np.ndarray:
     """Bluntness vortex-shedding band MSP (Pa²), eq. (70)-(82); 0 where h = 0."""
     f = np.asarray(frequency_hz, dtype=float)
     col = _columns(sections, radiation, medium)
     c, span, u, h, mach = (col[k] for k in ("chord_m", "span_m", "speed_mps", "te_thickness_m", "mach"))
-    psi, r_e, theta, phi = col["psi_deg"], col["distance_m"], col["theta_e_rad"], col["phi_e_rad"]
+    psi, r_e, d_h = col["psi_deg"], col["distance_m"], col["high"]
     bl = trailing_edge_thicknesses(c, col["reynolds"], col["alpha_deg"], col["tripped"])
     x = h / (0.5 * (bl["delta_star_p_m"] + bl["delta_star_s_m"]))  # eq. (73)
     blunt = h > 0.0
     hs, xs = np.where(blunt, h, 1.0), np.where(blunt, x, 1.0)
     eta = np.log10(f * hs / u / st3_peak(xs, psi))
-    level = (10.0 * np.log10(hs * mach**5.5 * span * directivity_high(theta, phi, mach) / (r_e * r_e))
+    level = (10.0 * np.log10(hs * mach**5.5 * span * d_h / (r_e * r_e))
              + g4(xs, psi) + g5(xs, psi, eta))
     return np.where(blunt, _scaled_msp(level), 0.0)
 
@@ -454,7 +464,7 @@ def bluntness_msp(frequency_hz, sections: Sections, radiation: Radiation, medium
 # --------------------------------------------------------------------------------------------
 
 
-def tip_vortex_msp(frequency_hz, chord_m, speed_mps, alpha_tip_rad, radiation: Radiation, medium: Medium,
+def tip_vortex_msp(frequency_hz, chord_m, speed_mps, alpha_tip_rad, radiation: Directivity, medium: Medium,
                    shape: str = "flat") -> np.ndarray:
     """Tip-vortex formation band MSP (Pa²), eq. (61)-(66); broadcast shape + (n_f,).
 
@@ -470,8 +480,7 @@ def tip_vortex_msp(frequency_hz, chord_m, speed_mps, alpha_tip_rad, radiation: R
     if not (np.all(np.isfinite(c)) and np.all(c > 0.0) and np.all(np.isfinite(u)) and np.all(u > 0.0)):
         raise ValueError("tip chord_m and speed_mps must be finite and positive")
     a = np.degrees(np.abs(np.asarray(alpha_tip_rad, dtype=float)))[..., None]
-    r_e, theta, phi = (np.asarray(v, dtype=float)[..., None]
-                       for v in (radiation.distance_m, radiation.theta_e_rad, radiation.phi_e_rad))
+    r_e, d_h = (np.asarray(v, dtype=float)[..., None] for v in (radiation.distance_m, radiation.high))
     if shape == "round":
         ell = 0.008 * a * c
     else:
@@ -480,7 +489,7 @@ def tip_vortex_msp(frequency_hz, chord_m, speed_mps, alpha_tip_rad, radiation: R
     mach_max = (1.0 + 0.036 * a) * mach
     ells = np.where(ell > 0.0, ell, 1.0)
     st = f * ells / (mach_max * medium.speed_of_sound_mps)
-    level = (10.0 * np.log10(mach * mach * mach_max**3 * ells * ells * directivity_high(theta, phi, mach) / (r_e * r_e))
+    level = (10.0 * np.log10(mach * mach * mach_max**3 * ells * ells * d_h / (r_e * r_e))
              - 30.5 * (np.log10(st) + 0.3) ** 2 + 126.0)
     return np.where(ell > 0.0, _scaled_msp(level), 0.0)
 
@@ -507,7 +516,7 @@ def tip_lift_slope_ratio(aspect_ratio: float) -> float:
 # --------------------------------------------------------------------------------------------
 
 
-def section_msp(frequency_hz, sections: Sections, radiation: Radiation, medium: Medium) -> dict[str, np.ndarray]:
+def section_msp(frequency_hz, sections: Sections, radiation: Directivity, medium: Medium) -> dict[str, np.ndarray]:
     """Band MSP (Pa²) of the five section mechanisms (all of COMPONENTS but ``tip``), shape S + (n_f,)."""
     f = np.asarray(frequency_hz, dtype=float)
     if not (np.all(np.isfinite(f)) and np.all(f > 0.0)):

@@ -104,21 +104,41 @@ class SourceKinematics:
     velocity_mps: np.ndarray
 
 
-def _radiation(kin: SourceKinematics, observer_m: np.ndarray, observer_velocity_mps: np.ndarray,
-               speed_of_sound_mps: float, doppler: bool) -> tuple[bpm.Radiation, np.ndarray]:
-    """BPM radiation geometry (n_az, n_src) and Doppler factor D for one observer."""
+def _rotated_about_z(vectors: np.ndarray, angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    x, y = vectors[..., 0], vectors[..., 1]
+    return np.stack([c * x - s * y, s * x + c * y, vectors[..., 2]], axis=-1)
+
+
+def _radiation(kin: SourceKinematics, mach, observer_m: np.ndarray, observer_velocity_mps: np.ndarray,
+               speed_of_sound_mps: float, doppler: bool, cell_rad: float, n_sub: int) -> tuple[bpm.Directivity, np.ndarray]:
+    """Directivity (n_az, n_src) and Doppler factor D for one observer.
+
+    D̄_h and D̄_l are averaged over ``n_sub`` sub-azimuths spread evenly over the azimuth cell
+    (width ``cell_rad``, the source turned about z_H): near the rotor plane D̄_h of eq. (B1) jumps
+    where the chordwise axis points at the observer (Θ_e → 180°, sin²Φ_e undefined), a feature a
+    few degrees wide that point samples would catch or miss at random. Distance and D are the
+    cell centre's (they vary smoothly).
+    """
+    high = np.zeros(np.shape(kin.position_m)[:2])
+    low = np.zeros_like(high)
+    normal = np.cross(kin.flow_unit, kin.span_unit)
+    for j in range(n_sub):
+        # turning the source by +δ about z_H is turning the observer by −δ in the source's frame
+        rvec = _rotated_about_z(observer_m, -((j + 0.5) / n_sub - 0.5) * cell_rad) - kin.position_m
+        rhat = rvec / np.linalg.norm(rvec, axis=-1, keepdims=True)
+        theta = np.arccos(np.clip(np.sum(rhat * kin.flow_unit, axis=-1), -1.0, 1.0))
+        phi = np.arctan2(np.abs(np.sum(rhat * normal, axis=-1)), np.sum(rhat * kin.span_unit, axis=-1))
+        high += bpm.directivity_high(theta, phi, mach) / n_sub
+        low += bpm.directivity_low(theta, phi, mach) / n_sub
     rvec = observer_m[None, None, :] - kin.position_m
     dist = np.linalg.norm(rvec, axis=-1)
     if np.any(dist <= 0.0):
         raise ValueError("an observer coincides with a blade element")
-    rhat = rvec / dist[..., None]
-    cos_theta = np.clip(np.sum(rhat * kin.flow_unit, axis=-1), -1.0, 1.0)
-    along_span = np.sum(rhat * kin.span_unit, axis=-1)
-    normal = np.cross(kin.flow_unit, kin.span_unit)
-    along_normal = np.abs(np.sum(rhat * normal, axis=-1))
-    radiation = bpm.Radiation(dist, np.arccos(cos_theta), np.arctan2(along_normal, along_span))
+    radiation = bpm.Directivity(dist, high, low)
     if not doppler:
         return radiation, np.ones_like(dist)
+    rhat = rvec / dist[..., None]
     m_src = np.sum(kin.velocity_mps * rhat, axis=-1) / speed_of_sound_mps
     m_obs = rhat @ observer_velocity_mps / speed_of_sound_mps
     if np.any(m_src >= 1.0):
@@ -149,13 +169,16 @@ def rotating_sources_msp(
     *,
     active=None,
     doppler: bool = True,
+    n_sub: int = 16,
 ) -> dict[str, np.ndarray]:
     """Rotation-averaged band MSP (Pa²) per observer, dict over bpm.COMPONENTS, each (n_obs, n_band).
 
     ``sections`` and ``kinematics`` hold one blade's elements at n_az azimuths (shape (n_az, n_el));
     ``tip_*`` the tip-vortex source (n_az, 1) with α'_TIP already including the lift-slope ratio;
     ``active`` (n_az, n_el) masks sources that radiate (default all); observers (n_obs, 3) in H
-    with common velocity ``observer_velocity_mps`` (3,) relative to the still air.
+    with common velocity ``observer_velocity_mps`` (3,) relative to the still air. The n_az
+    azimuths are equally spaced over a revolution; ``n_sub`` directivity sub-samples per azimuth
+    cell (see :func:`_radiation`).
     """
     obs = np.atleast_2d(np.asarray(observers_m, dtype=float))
     if obs.ndim != 2 or obs.shape[1] != 3 or not np.all(np.isfinite(obs)):
@@ -165,12 +188,15 @@ def rotating_sources_msp(
     active = np.ones(np.shape(kinematics.position_m)[:2], dtype=bool) if active is None else np.asarray(active)
     out = {name: np.zeros((obs.shape[0], f_c.size)) for name in bpm.COMPONENTS}
     c0 = medium.speed_of_sound_mps
+    cell = 2.0 * np.pi / np.shape(kinematics.position_m)[0]
+    mach = np.asarray(sections.speed_mps, dtype=float) / c0
+    tip_mach = np.asarray(tip_speed_mps, dtype=float) / c0
     for i, x_obs in enumerate(obs):
-        radiation, d = _radiation(kinematics, x_obs, v_obs, c0, doppler)
+        radiation, d = _radiation(kinematics, mach, x_obs, v_obs, c0, doppler, cell, n_sub)
         spectra = bpm.section_msp(f_c / d[..., None], sections, radiation, medium)
         for name, msp in spectra.items():
             out[name][i] = n_blades * _average(msp, d, active)
-        radiation, d = _radiation(tip_kinematics, x_obs, v_obs, c0, doppler)
+        radiation, d = _radiation(tip_kinematics, tip_mach, x_obs, v_obs, c0, doppler, cell, n_sub)
         tip = bpm.tip_vortex_msp(f_c / d[..., None], tip_chord_m, tip_speed_mps, tip_alpha_rad, radiation, medium,
                                  tip_shape)
         out["tip"][i] = n_blades * _average(tip, d, np.ones(d.shape, dtype=bool))

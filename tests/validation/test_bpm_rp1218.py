@@ -27,7 +27,7 @@ from nps import bpm
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "bpm" / "rp1218"
 MEDIUM = bpm.Medium(speed_of_sound_mps=340.46, kinematic_viscosity_m2_s=1.4529e-5)
-MIC = bpm.Radiation(distance_m=1.22, theta_e_rad=np.pi / 2, phi_e_rad=np.pi / 2)
+MIC = bpm.Directivity(distance_m=1.22, high=1.0, low=1.0)  # Θ_e = Φ_e = 90°: D̄_h = D̄_l = 1 (B1, B2)
 SPAN_M = 0.4572
 
 
