@@ -14,7 +14,9 @@ observer at a given position relative to a flying aircraft). Per observer, eleme
 
 - geometry at the same instant (no retarded-time solve): r_e, Θ_e, Φ_e from the element to the
   observer; for the rotation average this is exact in hover and neglects the hub's displacement
-  during propagation (order M_hub) in forward flight;
+  during propagation (order M_hub) in forward flight. The directivity factors D̄_h, D̄_l are
+  averaged over each azimuth cell (``n_sub`` sub-azimuths): eq. (B1) jumps where x_e points at
+  the observer, which near the rotor plane is a few degrees of azimuth wide;
 - Doppler factor D = (1 − M_o·r̂)/(1 − M_s·r̂), M_s the element's and M_o the observer's velocity
   relative to the still air over c0: a 1/3-octave band received at f_c came from the source band at
   f_c/D (bands are proportional, so the BPM band level is evaluated at f_c/D); the convective
