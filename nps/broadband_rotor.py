@@ -205,7 +205,10 @@ def rotating_sources_msp(
     return out
 
 
-def _disk_arrays(disk: pd.DataFrame, n_azimuth: int) -> dict[str, np.ndarray]:
+DEFAULT_MAX_AZIMUTHS = 36
+
+
+def _disk_arrays(disk: pd.DataFrame, n_azimuth: int | None) -> dict[str, np.ndarray]:
     missing = [c for c in DISK_INPUT_COLUMNS if c not in disk.columns]
     if missing:
         raise ValueError(f"disk table lacks column(s) {missing} (expected the loads disk table, docs/conventions.md)")
@@ -214,8 +217,12 @@ def _disk_arrays(disk: pd.DataFrame, n_azimuth: int) -> dict[str, np.ndarray]:
     if n_psi < 1 or len(disk) % n_psi:
         raise ValueError("disk table is not a full ψ × r grid")
     n_r = len(disk) // n_psi
+    if n_azimuth is None:
+        n_azimuth = max(d for d in range(1, DEFAULT_MAX_AZIMUTHS + 1) if n_psi % d == 0)
     if n_azimuth < 1 or n_psi % n_azimuth:
         raise ValueError(f"n_azimuth={n_azimuth} must divide the disk table's {n_psi} azimuths")
+    if not np.all(psi.reshape(n_psi, n_r) == psi.reshape(n_psi, n_r)[:, :1]):
+        raise ValueError("disk table rows must be ψ-major (all radial stations of one azimuth together)")
     step = n_psi // n_azimuth
     arrays = {c: disk[c].to_numpy(dtype=float).reshape(n_psi, n_r)[::step] for c in DISK_INPUT_COLUMNS}
     for c, values in arrays.items():
@@ -235,7 +242,7 @@ def rotor_broadband_msp(
     band_numbers,
     edge: BladeEdge = BladeEdge(),
     *,
-    n_azimuth: int = 36,
+    n_azimuth: int | None = None,
     doppler: bool = True,
 ) -> dict[str, np.ndarray]:
     """BPM broadband of one rotor: 1/3-octave band MSP (Pa²) per observer, (n_obs, n_band) arrays.
@@ -246,7 +253,7 @@ def rotor_broadband_msp(
     (n_obs, 3) observer positions in the hub frame H, moving with the hub; ``medium``: c0 and ν
     (:func:`medium_from_atmosphere`); ``band_numbers``: base-10 1/3-octave band numbers of
     :mod:`nps.spectra` (0 = 1 kHz); ``n_azimuth`` azimuth samples per revolution (must divide the
-    table's); returns a dict over :data:`nps.bpm.COMPONENTS` plus ``total``.
+    table's; default the largest divisor ≤ DEFAULT_MAX_AZIMUTHS = 36); returns a dict over :data:`nps.bpm.COMPONENTS` plus ``total``.
     """
     a = _disk_arrays(disk, n_azimuth)
     s = int(geometry.rotation_sign)

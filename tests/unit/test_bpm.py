@@ -213,6 +213,8 @@ def test_rotor_input_errors():
         rotor_broadband_msp(disk, geometry, operating, obs, MEDIUM, BANDS, n_azimuth=7)
     with pytest.raises(ValueError, match="tripped"):
         rotor_broadband_msp(disk, geometry, operating, obs, MEDIUM, BANDS, BladeEdge(tripped=(True, False)))
+    with pytest.raises(ValueError, match="ψ-major"):
+        rotor_broadband_msp(disk.sort_values("r_m", kind="stable"), geometry, operating, obs, MEDIUM, BANDS)
     with pytest.raises(ValueError, match="tip_shape"):
         BladeEdge(tip_shape="swept")
 
