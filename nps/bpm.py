@@ -281,6 +281,12 @@ def stall_angle_deg(mach) -> np.ndarray:
     return np.minimum(23.43 * np.asarray(mach, dtype=float) + 4.651, 12.5)
 
 
+def is_stalled(sections: Sections, medium: Medium) -> np.ndarray:
+    """True where |α*| > min(γ0, 12.5°): SPL_p = SPL_s = −∞ and SPL_α takes the stalled form (28)."""
+    mach = np.asarray(sections.speed_mps, dtype=float) / medium.speed_of_sound_mps
+    return np.degrees(np.abs(np.asarray(sections.alpha_rad, dtype=float))) > stall_angle_deg(mach)
+
+
 def k2_minus_k1(mach, alpha_deg) -> np.ndarray:
     """K_2 − K_1 (dB), eq. (49) with γ, γ0, β, β0 of eq. (50); −1000 dB below γ0 − γ."""
     m = np.asarray(mach, dtype=float)
@@ -329,7 +335,7 @@ def tbl_te_msp(frequency_hz, sections: Sections, radiation: Directivity, medium:
     kk2 = kk1 + k2_minus_k1(mach, alpha)
     geom = mach**5 * span / (r_e * r_e)
     st_p, st_s = f * dsp / u, f * dss / u
-    stalled = alpha > stall_angle_deg(mach)
+    stalled = is_stalled(sections, medium)[..., None]
     spl_p = 10.0 * np.log10(dsp * geom * d_h) + a_curve(st_p / st_1, re_c) + kk1 - 3.0 + delta_k1(alpha, u * dsp / nu)
     spl_s = 10.0 * np.log10(dss * geom * d_h) + a_curve(st_s / st_1bar, re_c) + kk1 - 3.0
     spl_a = np.where(stalled,

@@ -42,6 +42,7 @@ import pandas as pd
 
 from nps import bpm
 from nps.atmosphere import AtmosphereState
+from nps.jit import kernel
 from nps.rotor import OperatingPoint, RotorGeometry
 from nps.spectra import third_octave_bands
 
@@ -155,6 +156,33 @@ def _average(msp, doppler_factor, active):
     return np.sum(np.where(active[..., None], msp, 0.0) * weight[..., None], axis=(0, 1))
 
 
+SPECTRUM_STEP_DECADES = 1.0 / 80.0
+"""Log-frequency step of the source spectra that Doppler-shifted bands are interpolated from."""
+
+
+@kernel
+def _interpolate_rows(ln_msp, x, out):
+    """out[g, a, e, q] = exp(linear interpolation of ln_msp[g, a, e, :] at fractional index x[a, e, q])."""
+    n_grid = ln_msp.shape[3]
+    for a in range(x.shape[0]):
+        for e in range(x.shape[1]):
+            for q in range(x.shape[2]):
+                k = min(max(int(np.floor(x[a, e, q])), 0), n_grid - 2)
+                w = x[a, e, q] - k
+                for g in range(ln_msp.shape[0]):
+                    lo = ln_msp[g, a, e, k]
+                    out[g, a, e, q] = np.exp(lo + w * (ln_msp[g, a, e, k + 1] - lo))
+
+
+def _log_interpolate(ln_msp: np.ndarray, has_energy: np.ndarray, log_f0: float, log_query: np.ndarray) -> np.ndarray:
+    """Source spectra given as ln MSP (n_g, n_az, n_src, n_grid) on log10 f = log_f0 + k·step,
+    interpolated linearly in dB vs log f at ``log_query`` (n_az, n_src, n_q); sources without
+    energy stay at 0."""
+    out = np.empty(ln_msp.shape[:3] + log_query.shape[-1:])
+    _interpolate_rows(ln_msp, np.ascontiguousarray((log_query - log_f0) / SPECTRUM_STEP_DECADES), out)
+    return np.where(has_energy, out, 0.0)
+
+
 def rotating_sources_msp(
     sections: bpm.Sections,
     kinematics: SourceKinematics,
@@ -181,6 +209,12 @@ def rotating_sources_msp(
     with common velocity ``observer_velocity_mps`` (3,) relative to the still air. The n_az
     azimuths are equally spaced over a revolution; ``n_sub`` directivity sub-samples per azimuth
     cell (see :func:`_radiation`).
+
+    Each source's band spectrum is computed once at unit directivity and distance (the level is
+    proportional to D̄/r_e²: D̄_l for stalled separation, D̄_h otherwise). Without Doppler it is
+    taken at the band centres; with Doppler on a log-frequency grid of SPECTRUM_STEP_DECADES
+    covering every possible f_c/D and interpolated linearly in dB (≤ 0.02 dB from direct
+    evaluation, tests/unit/test_bpm.py).
     """
     obs = np.atleast_2d(np.asarray(observers_m, dtype=float))
     if obs.ndim != 2 or obs.shape[1] != 3 or not np.all(np.isfinite(obs)):
@@ -188,20 +222,40 @@ def rotating_sources_msp(
     f_c = np.asarray(band_center_hz, dtype=float)
     v_obs = np.asarray(observer_velocity_mps, dtype=float)
     active = np.ones(np.shape(kinematics.position_m)[:2], dtype=bool) if active is None else np.asarray(active)
-    out = {name: np.zeros((obs.shape[0], f_c.size)) for name in bpm.COMPONENTS}
     c0 = medium.speed_of_sound_mps
     cell = 2.0 * np.pi / np.shape(kinematics.position_m)[0]
     mach = np.asarray(sections.speed_mps, dtype=float) / c0
     tip_mach = np.asarray(tip_speed_mps, dtype=float) / c0
-    for i, x_obs in enumerate(obs):
-        radiation, d = _radiation(kinematics, mach, x_obs, v_obs, c0, doppler, cell, n_sub)
-        spectra = bpm.section_msp(f_c / d[..., None], sections, radiation, medium)
-        for name, msp in spectra.items():
-            out[name][i] = n_blades * _average(msp, d, active)
-        radiation, d = _radiation(tip_kinematics, tip_mach, x_obs, v_obs, c0, doppler, cell, n_sub)
-        tip = bpm.tip_vortex_msp(f_c / d[..., None], tip_chord_m, tip_speed_mps, tip_alpha_rad, radiation, medium,
-                                 tip_shape)
-        out["tip"][i] = n_blades * _average(tip, d, np.ones(d.shape, dtype=bool))
+    unit = bpm.Directivity(1.0, 1.0, 1.0)
+    if doppler:
+        m_src = max(np.max(np.linalg.norm(k.velocity_mps, axis=-1)) for k in (kinematics, tip_kinematics)) / c0
+        m_obs = np.linalg.norm(v_obs) / c0
+        if m_src >= 1.0:
+            raise ValueError("a blade element moves supersonically: BPM does not apply")
+        log_f0 = np.log10(np.min(f_c) * (1.0 - m_src) / (1.0 + m_obs)) - SPECTRUM_STEP_DECADES
+        log_f1 = np.log10(np.max(f_c) * (1.0 + m_src) / (1.0 - m_obs)) + SPECTRUM_STEP_DECADES
+        f_source = 10.0 ** (log_f0 + SPECTRUM_STEP_DECADES * np.arange(int(np.ceil((log_f1 - log_f0) / SPECTRUM_STEP_DECADES)) + 1))
+    else:
+        f_source = f_c
+    section = bpm.section_msp(f_source, sections, unit, medium)
+    groups = (  # (mechanisms, their source spectra stacked on axis 0, kinematics, Mach, radiating mask)
+        (bpm.COMPONENTS[:-1], np.stack([section[name] for name in bpm.COMPONENTS[:-1]]), kinematics, mach, active),
+        (bpm.COMPONENTS[-1:], bpm.tip_vortex_msp(f_source, tip_chord_m, tip_speed_mps, tip_alpha_rad, unit, medium,
+                                                 tip_shape)[None], tip_kinematics, tip_mach, np.ones(tip_mach.shape, dtype=bool)),
+    )
+    stalled = bpm.is_stalled(sections, medium)
+    out = {name: np.zeros((obs.shape[0], f_c.size)) for name in bpm.COMPONENTS}
+    for names, msp, kin, m, on in groups:
+        ln_msp = np.log(np.maximum(msp, 1e-300)) if doppler else None
+        has_energy = np.any(msp > 0.0, axis=-1, keepdims=True)
+        for i, x_obs in enumerate(obs):
+            radiation, d = _radiation(kin, m, x_obs, v_obs, c0, doppler, cell, n_sub)
+            source = (_log_interpolate(ln_msp, has_energy, log_f0, np.log10(f_c) - np.log10(d)[..., None])
+                      if doppler else msp)
+            high, low = radiation.high / radiation.distance_m**2, radiation.low / radiation.distance_m**2
+            for j, name in enumerate(names):
+                factor = np.where(stalled, low, high) if name == "separation" else high
+                out[name][i] = n_blades * _average(source[j] * factor[..., None], d, on)
     return out
 
 
