@@ -114,7 +114,8 @@ def _rotated_about_z(vectors: np.ndarray, angle: float) -> np.ndarray:
 
 
 def _radiation(kin: SourceKinematics, mach, observer_m: np.ndarray, observer_velocity_mps: np.ndarray,
-               speed_of_sound_mps: float, doppler: bool, cell_rad: float, n_sub: int) -> tuple[bpm.Directivity, np.ndarray]:
+               speed_of_sound_mps: float, doppler: bool, cell_rad: float,
+               n_sub: int) -> tuple[bpm.Directivity, np.ndarray]:
     """Directivity (n_az, n_src) and Doppler factor D for one observer.
 
     D̄_h and D̄_l are averaged over ``n_sub`` sub-azimuths spread evenly over the azimuth cell
@@ -144,8 +145,6 @@ def _radiation(kin: SourceKinematics, mach, observer_m: np.ndarray, observer_vel
     rhat = rvec / dist[..., None]
     m_src = np.sum(kin.velocity_mps * rhat, axis=-1) / speed_of_sound_mps
     m_obs = rhat @ observer_velocity_mps / speed_of_sound_mps
-    if np.any(m_src >= 1.0):
-        raise ValueError("a blade element moves supersonically toward an observer: BPM does not apply")
     return radiation, (1.0 - m_obs) / (1.0 - m_src)
 
 
@@ -234,14 +233,16 @@ def rotating_sources_msp(
             raise ValueError("a blade element moves supersonically: BPM does not apply")
         log_f0 = np.log10(np.min(f_c) * (1.0 - m_src) / (1.0 + m_obs)) - SPECTRUM_STEP_DECADES
         log_f1 = np.log10(np.max(f_c) * (1.0 + m_src) / (1.0 - m_obs)) + SPECTRUM_STEP_DECADES
-        f_source = 10.0 ** (log_f0 + SPECTRUM_STEP_DECADES * np.arange(int(np.ceil((log_f1 - log_f0) / SPECTRUM_STEP_DECADES)) + 1))
+        n_grid = int(np.ceil((log_f1 - log_f0) / SPECTRUM_STEP_DECADES)) + 1
+        f_source = 10.0 ** (log_f0 + SPECTRUM_STEP_DECADES * np.arange(n_grid))
     else:
         f_source = f_c
     section = bpm.section_msp(f_source, sections, unit, medium)
     groups = (  # (mechanisms, their source spectra stacked on axis 0, kinematics, Mach, radiating mask)
         (bpm.COMPONENTS[:-1], np.stack([section[name] for name in bpm.COMPONENTS[:-1]]), kinematics, mach, active),
-        (bpm.COMPONENTS[-1:], bpm.tip_vortex_msp(f_source, tip_chord_m, tip_speed_mps, tip_alpha_rad, unit, medium,
-                                                 tip_shape)[None], tip_kinematics, tip_mach, np.ones(tip_mach.shape, dtype=bool)),
+        (bpm.COMPONENTS[-1:],
+         bpm.tip_vortex_msp(f_source, tip_chord_m, tip_speed_mps, tip_alpha_rad, unit, medium, tip_shape)[None],
+         tip_kinematics, tip_mach, np.ones(tip_mach.shape, dtype=bool)),
     )
     stalled = bpm.is_stalled(sections, medium)
     out = {name: np.zeros((obs.shape[0], f_c.size)) for name in bpm.COMPONENTS}
