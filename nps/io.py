@@ -108,14 +108,10 @@ def write_table(
 _TEMPORARY_TOKEN = re.compile(r"[a-z0-9_]{8}")  # also the names tempfile.mkstemp made before
 
 
-def _temporary_name(path: Path, token: str) -> Path:
-    return path.with_name(f".{path.name}.{token}.tmp")
-
-
 def _create_temporary(path: Path) -> Path:
     """Create ``.{name}.{token}.tmp`` next to ``path`` with mode 0666 & ~umask (O_EXCL, new token on collision)."""
     while True:
-        tmp = _temporary_name(path, secrets.token_hex(4))
+        tmp = path.with_name(f".{path.name}.{secrets.token_hex(4)}.tmp")
         try:
             os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
             return tmp

@@ -68,6 +68,19 @@ def acoustics_bytes(n_observers: int, samples_per_rev: int, n_psi: int, n_r: int
             + ACOUSTICS_BYTES_PER_SAMPLE * samples * min(_positive_int("n_rotors", n_rotors), 2))
 
 
+def estimate_bytes(stage: str, resolution: Mapping, n_observers: int = 1, n_rotors: int = 1) -> float:
+    """Estimate (B) of one job of ``stage`` (``loads``, ``wake``, ``acoustics``) from the campaign's
+    ``resolution`` block (n_psi, n_r, wake_revolutions, samples_per_rev)."""
+    n_psi, n_r = resolution["n_psi"], resolution["n_r"]
+    if stage == "loads":
+        return loads_bytes(n_psi, n_r)
+    if stage == "wake":
+        return wake_bvi_bytes(n_psi, n_r, float(resolution["wake_revolutions"]))
+    if stage == "acoustics":
+        return acoustics_bytes(n_observers, resolution["samples_per_rev"], n_psi, n_r, n_rotors)
+    raise ValueError(f"estimate_bytes: stage '{stage}' has no estimate; expected loads, wake or acoustics")
+
+
 def observer_count(spec: Mapping) -> int:
     """Number of observers of an ``observer_sets.<name>`` entry of the campaign config."""
     kind = spec.get("kind")

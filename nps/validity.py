@@ -164,7 +164,7 @@ def check_vortex_ring(mu: float, mu_z: float, ct: float, name: str, stage: str =
     low, high = VRS_AXIAL_RANGE
     if vx < VRS_EDGEWISE_MAX and low < vz < high:
         return Finding(f"rotor '{name}': descent rate V_z/v_h (at V_x/v_h = {vx:.3g})", vz,
-                       f"outside {low:g} < V_z/v_h < {high:g} while V_x/v_h < {VRS_EDGEWISE_MAX:g} (vortex-ring state)",
+                       f"V_z/v_h <= {low:g} or >= {high:g} when V_x/v_h < {VRS_EDGEWISE_MAX:g} (vortex-ring state)",
                        VRS_SOURCE, stage)
     return None
 

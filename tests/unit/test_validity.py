@@ -200,6 +200,17 @@ def test_worst_unit_mistakes_caught_before_the_trim(helicopter):
         assert "rotor 'main': hover tip Mach number" in quantities(v.aircraft_findings(aircraft, ATM.speed_of_sound_mps))
 
 
+def test_implausible_loading_inputs_are_named(helicopter):
+    # issue 14: cl_max 0.05 and gross weight x10 ended in "did not trim"; the envelope names the quantity
+    weak = copy.deepcopy(helicopter)
+    weak["rotors"][0]["airfoil"]["cl_max"] = 0.05
+    assert quantities(v.trim_findings(weak, trim(weak, 40.5, 0.0))) == ["rotor 'main': mean lift coefficient 6 C_T/sigma"]
+    heavy = copy.deepcopy(helicopter)
+    heavy["gross_weight_kg"] *= 10.0
+    found = quantities(v.trim_findings(heavy, trim(heavy, 40.5, 0.0)))
+    assert "rotor 'main': blade loading C_T/sigma" in found
+
+
 def test_worst_wake_revolutions_0_01(helicopter):
     row = trim(helicopter, 25.7, -2.69).iloc[0]
     assert v.wake_findings(4.0, row) == []
