@@ -11,6 +11,9 @@ Element counts:
 - wake table rows: 72 snapshot×blade pairs (5° snapshots over one blade passage, every blade)
   × (round(wake_revolutions × n_psi) + 1) nodes (the wake uses n_psi segments per revolution);
 - signal samples: observers × samples_per_rev per rotor (two groups each).
+
+A job that treats the rotors of an aircraft in turn still holds the previous rotor's output table
+while it computes the next: its estimate is the one-rotor peak plus that table (8 B per value).
 """
 
 from __future__ import annotations
@@ -18,6 +21,9 @@ from __future__ import annotations
 import math
 import os
 from typing import Mapping
+
+from nps.bet import DISK_COLUMNS
+from nps.wake import WAKE_COLUMNS
 
 INTERPRETER_BYTES = 250e6  # Python + numpy/pandas/pyarrow/numba + nps imported: 210-250 MB measured
 LOADS_FIXED_BYTES = 12e6
@@ -28,6 +34,8 @@ WAKE_SNAPSHOT_BLADES = 72  # nps.cli.wake: 5° snapshots over 360°/B, B blades 
 ACOUSTICS_FIXED_BYTES = 180e6  # includes a cold numba compilation (~100 MB)
 ACOUSTICS_BYTES_PER_SAMPLE = 260.0
 ACOUSTICS_BYTES_PER_STATION = 900.0
+DISK_TABLE_BYTES_PER_STATION = 8.0 * len(DISK_COLUMNS)  # a held loads/BVI disk table
+WAKE_TABLE_BYTES_PER_ROW = 8.0 * len(WAKE_COLUMNS)  # a held wake table
 MEM_MB_MARGIN = 1.25
 
 
@@ -41,9 +49,15 @@ def _positive_int(name: str, value) -> int:
     return int(value)
 
 
-def loads_bytes(n_psi: int, n_r: int) -> float:
-    """Peak memory (B) of the loads stage (one rotor trim on an n_psi × n_r disk)."""
-    return LOADS_FIXED_BYTES + LOADS_BYTES_PER_STATION * _positive_int("n_psi", n_psi) * _positive_int("n_r", n_r)
+def _held(n_rotors: int) -> int:
+    """Output tables of earlier rotors still held while the next rotor is computed (0 or 1)."""
+    return min(_positive_int("n_rotors", n_rotors), 2) - 1
+
+
+def loads_bytes(n_psi: int, n_r: int, n_rotors: int = 1) -> float:
+    """Peak memory (B) of a loads job trimming ``n_rotors`` rotors in turn on an n_psi × n_r disk."""
+    stations = _positive_int("n_psi", n_psi) * _positive_int("n_r", n_r)
+    return LOADS_FIXED_BYTES + (LOADS_BYTES_PER_STATION + DISK_TABLE_BYTES_PER_STATION * _held(n_rotors)) * stations
 
 
 def wake_rows(n_psi: int, wake_revolutions: float) -> int:
@@ -53,19 +67,21 @@ def wake_rows(n_psi: int, wake_revolutions: float) -> int:
     return WAKE_SNAPSHOT_BLADES * (int(round(wake_revolutions * _positive_int("n_psi", n_psi))) + 1)
 
 
-def wake_bvi_bytes(n_psi: int, n_r: int, wake_revolutions: float) -> float:
-    """Peak memory (B) of the wake + BVI job (rotors one after another: the largest rotor counts)."""
-    return (WAKE_FIXED_BYTES + LOADS_BYTES_PER_STATION * _positive_int("n_psi", n_psi) * _positive_int("n_r", n_r)
-            + WAKE_BYTES_PER_ROW * wake_rows(n_psi, wake_revolutions))
+def wake_bvi_bytes(n_psi: int, n_r: int, wake_revolutions: float, n_rotors: int = 1) -> float:
+    """Peak memory (B) of a wake + BVI job treating ``n_rotors`` rotors in turn."""
+    stations = _positive_int("n_psi", n_psi) * _positive_int("n_r", n_r)
+    rows = wake_rows(n_psi, wake_revolutions)
+    held = _held(n_rotors) * (DISK_TABLE_BYTES_PER_STATION * stations + WAKE_TABLE_BYTES_PER_ROW * rows)
+    return WAKE_FIXED_BYTES + LOADS_BYTES_PER_STATION * stations + WAKE_BYTES_PER_ROW * rows + held
 
 
 def acoustics_bytes(n_observers: int, samples_per_rev: int, n_psi: int, n_r: int, n_rotors: int = 1) -> float:
-    """Peak memory (B) of the acoustics job of one observer set (rotors one after another; the
-    previous rotor's signal table is still held while the next is computed, hence min(n_rotors, 2))."""
+    """Peak memory (B) of the acoustics job of one observer set treating ``n_rotors`` rotors in turn
+    (the held signal table is counted at the full per-sample coefficient)."""
     samples = _positive_int("observers", n_observers) * _positive_int("samples_per_rev", samples_per_rev)
     stations = _positive_int("n_psi", n_psi) * _positive_int("n_r", n_r)
     return (ACOUSTICS_FIXED_BYTES + ACOUSTICS_BYTES_PER_STATION * stations
-            + ACOUSTICS_BYTES_PER_SAMPLE * samples * min(_positive_int("n_rotors", n_rotors), 2))
+            + ACOUSTICS_BYTES_PER_SAMPLE * samples * (1 + _held(n_rotors)))
 
 
 def estimate_bytes(stage: str, resolution: Mapping, n_observers: int = 1, n_rotors: int = 1) -> float:
@@ -73,9 +89,9 @@ def estimate_bytes(stage: str, resolution: Mapping, n_observers: int = 1, n_roto
     ``resolution`` block (n_psi, n_r, wake_revolutions, samples_per_rev)."""
     n_psi, n_r = resolution["n_psi"], resolution["n_r"]
     if stage == "loads":
-        return loads_bytes(n_psi, n_r)
+        return loads_bytes(n_psi, n_r, n_rotors)
     if stage == "wake":
-        return wake_bvi_bytes(n_psi, n_r, float(resolution["wake_revolutions"]))
+        return wake_bvi_bytes(n_psi, n_r, float(resolution["wake_revolutions"]), n_rotors)
     if stage == "acoustics":
         return acoustics_bytes(n_observers, resolution["samples_per_rev"], n_psi, n_r, n_rotors)
     raise ValueError(f"estimate_bytes: stage '{stage}' has no estimate; expected loads, wake or acoustics")

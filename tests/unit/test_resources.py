@@ -61,6 +61,9 @@ def test_mem_mb_scales_with_the_resolution(repo_root):
     assert n_obs == 360 and bundled == 798  # (250 + 180 + 16.2 + 2 x 95.8) MB x 1.25
     assert res.mem_mb(res.loads_bytes(720, 100)) > res.mem_mb(res.estimate_bytes("loads", resolution)) == 343
     assert res.estimate_bytes("wake", resolution) == res.wake_bvi_bytes(360, 50, 4.0)
+    # a second rotor adds the held table of the first: 16 columns x 8 B per station (+ 14 x 8 B per wake row)
+    assert res.loads_bytes(360, 50, 2) - res.loads_bytes(360, 50) == 128.0 * 360 * 50 == res.loads_bytes(360, 50, 6) - res.loads_bytes(360, 50)
+    assert res.wake_bvi_bytes(360, 50, 4.0, 2) - res.wake_bvi_bytes(360, 50, 4.0) == 128.0 * 18000 + 112.0 * 72 * 1441
     with pytest.raises(ValueError, match="stage 'hsi' has no estimate"):
         res.estimate_bytes("hsi", resolution)
     assert [res.observer_count(config["observer_sets"][k]) for k in ("hsi", "ground")] == [5, 169]
