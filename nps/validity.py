@@ -38,12 +38,12 @@ TIP_MACH_SOURCE = ("subsonic sources of Farassat formulation 1A (Farassat, NASA/
                    "Prandtl-Glauert section lift bounded at the airfoil's mach_cap (nps.rotor.Airfoil)")
 BLADE_LOADING_MAX = 0.14
 BLADE_LOADING_SOURCE = (f"thrust-limit (stall) boundary measured by McHugh (1978, AHS 34th Forum), C_T/sigma ~ 0.12-0.13 "
-                        f"at its low-mu peak ({LEISHMAN_2006}, ch. 5); NPS uses 0.14 at every mu")
-MEAN_LIFT_SOURCE = f"uniform-lift blade element relation C_L = 6 C_T/sigma ({JOHNSON_1980}, §2.4; {LEISHMAN_2006}, ch. 3)"
+                        f"at its low-mu peak as reproduced in {LEISHMAN_2006}; NPS uses 0.14 at every mu")
+MEAN_LIFT_SOURCE = f"uniform-lift blade element relation C_L = 6 C_T/sigma ({JOHNSON_1980}, ch. 2; {LEISHMAN_2006}, ch. 3)"
 VRS_AXIAL_RANGE = (-2.0, 0.0)
 VRS_EDGEWISE_MAX = 1.0
 VRS_SOURCE = (f"momentum theory (Glauert inflow) has no valid solution for -2 < V_z/v_h < 0 ({LEISHMAN_2006}, ch. 2; "
-              f"{JOHNSON_1980}, §4.1); the vortex-ring region closes near V_x ~ v_h (Wolkovitch, J. AHS 17(3), 1972; "
+              f"{JOHNSON_1980}, ch. 2); the vortex-ring region closes near V_x ~ v_h (Wolkovitch, J. AHS 17(3), 1972; "
               f"Johnson, NASA/TP-2005-213477)")
 LOCK_NUMBER_RANGE = (1.0, 25.0)
 LOCK_NUMBER_SOURCE = (f"Lock numbers of real blades lie between about 3 and 15 ({JOHNSON_1980}, ch. 5; {LEISHMAN_2006}, ch. 4); "

@@ -160,6 +160,15 @@ def test_enforce_refuses_with_one_line_and_records_when_allowed():
     assert v.enforce([None, None], False, "x") == []
 
 
+def test_warnings_round_trip_through_the_artifact_metadata(tmp_path):
+    from nps.io import read_metadata, write_table
+
+    warnings = v.enforce([v.check_lock_number(1000.0, "main")], True, "x")
+    write_table(pd.DataFrame({"a": [1.0]}), tmp_path / "t.parquet", stage="trim", metadata={"validity_warnings": warnings})
+    stored = read_metadata(tmp_path / "t.parquet")["validity_warnings"]
+    assert stored == warnings and stored[0]["value"] == 1000.0 and "Lock number = 1000" in stored[0]["message"]
+
+
 # --- the issue-14 "worst" inputs ---------------------------------------------------------
 
 def test_worst_200_mps_helicopter(helicopter):
