@@ -27,6 +27,7 @@ from nps.broadband import peak_frequency_hz
 from nps.metrics import STUDY_BANDS
 from nps.rotor import Airfoil
 from nps.spectra import band_number_of
+from nps.wake import WakeModel
 
 JOHNSON_1980 = "Johnson, Helicopter Theory (1980)"
 LEISHMAN_2006 = "Leishman, Principles of Helicopter Aerodynamics, 2nd ed. (2006)"
@@ -327,10 +328,10 @@ def loads_findings(rotor_name: str, summary: pd.DataFrame) -> list[Finding]:
     return [f for f in out if f is not None]
 
 
-def wake_findings(revolutions: float, trim_row: Mapping) -> list[Finding]:
-    """Before the wake of one rotor: wake length from its trim row (μ_x, μ_y, μ_z, λ_i)."""
+def wake_findings(model: WakeModel, trim_row: Mapping) -> list[Finding]:
+    """Before the wake of one rotor: ``model.revolutions`` against its trim row (μ_x, μ_y, μ_z, λ_i)."""
     mu = math.hypot(trim_row["mu_x"], trim_row["mu_y"])
-    found = check_wake_length(revolutions, mu, trim_row["mu_z"] + trim_row["lambda_i"], str(trim_row["rotor"]))
+    found = check_wake_length(model.revolutions, mu, trim_row["mu_z"] + trim_row["lambda_i"], str(trim_row["rotor"]))
     return [found] if found is not None else []
 
 

@@ -15,6 +15,7 @@ from nps.config import load_aircraft
 from nps.frames import rot_y
 from nps.observers import ground_grid, hemisphere, points
 from nps.trim import FlightCondition, trim_aircraft
+from nps.wake import WakeModel
 
 ATM = isa(0.0, 0.0, 70.0)
 
@@ -222,8 +223,8 @@ def test_implausible_loading_inputs_are_named(helicopter):
 
 def test_worst_wake_revolutions_0_01(helicopter):
     row = trim(helicopter, 25.7, -2.69).iloc[0]
-    assert v.wake_findings(4.0, row) == []
-    assert quantities(v.wake_findings(0.01, row)) == ["rotor 'main': wake_revolutions"]
+    assert v.wake_findings(WakeModel(revolutions=4.0), row) == []
+    assert quantities(v.wake_findings(WakeModel(revolutions=0.01), row)) == ["rotor 'main': wake_revolutions"]
 
 
 @pytest.fixture(scope="module")
@@ -279,7 +280,7 @@ def test_bundled_helicopter_segments_inside(helicopter):
         assert v.aircraft_findings(helicopter, ATM.speed_of_sound_mps) == []
         assert v.trim_findings(helicopter, table) == []
         assert v.broadband_findings(helicopter, table) == []
-        assert all(v.wake_findings(4.0, row) == [] for _, row in table.iterrows())
+        assert all(v.wake_findings(WakeModel(revolutions=4.0), row) == [] for _, row in table.iterrows())
 
 
 def test_loads_findings_from_the_summary_table():
