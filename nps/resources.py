@@ -10,7 +10,8 @@ Element counts:
 - disk: n_psi × n_r stations (loads; disk fields of the wake/BVI and acoustics stages);
 - wake table rows: 72 snapshot×blade pairs (5° snapshots over one blade passage, every blade)
   × (round(wake_revolutions × n_psi) + 1) nodes (the wake uses n_psi segments per revolution);
-- signal samples: observers × samples_per_rev per rotor (two groups each).
+- signal samples: observers × samples_per_rev per rotor (two groups each); the HSI and metrics
+  jobs read every rotor's signals at once (rotor samples = rotors × observers × samples_per_rev).
 
 A job that treats the rotors of an aircraft in turn still holds the previous rotor's output table
 while it computes the next: its estimate is the one-rotor peak plus that table (8 B per value).
@@ -34,6 +35,11 @@ WAKE_SNAPSHOT_BLADES = 72  # nps.cli.wake: 5° snapshots over 360°/B, B blades 
 ACOUSTICS_FIXED_BYTES = 180e6  # includes a cold numba compilation (~100 MB)
 ACOUSTICS_BYTES_PER_SAMPLE = 260.0
 ACOUSTICS_BYTES_PER_STATION = 900.0
+HSI_FIXED_BYTES = 110e6  # includes a cold numba compilation
+HSI_BYTES_PER_SAMPLE = 160.0  # per rotor sample: every rotor's signals are read at once
+METRICS_FIXED_BYTES = 60e6
+METRICS_BYTES_PER_SAMPLE = 140.0  # per rotor sample of the radiated signals
+METRICS_BYTES_PER_HSI_SAMPLE = 80.0  # per rotor sample of the HSI signals, when they enter
 DISK_TABLE_BYTES_PER_STATION = 8.0 * len(DISK_COLUMNS)  # a held loads/BVI disk table
 WAKE_TABLE_BYTES_PER_ROW = 8.0 * len(WAKE_COLUMNS)  # a held wake table
 MEM_MB_MARGIN = 1.25
@@ -84,9 +90,26 @@ def acoustics_bytes(n_observers: int, samples_per_rev: int, n_psi: int, n_r: int
             + ACOUSTICS_BYTES_PER_SAMPLE * samples * (1 + _held(n_rotors)))
 
 
-def estimate_bytes(stage: str, resolution: Mapping, n_observers: int = 1, n_rotors: int = 1) -> float:
-    """Estimate (B) of one job of ``stage`` (``loads``, ``wake``, ``acoustics``) from the campaign's
-    ``resolution`` block (n_psi, n_r, wake_revolutions, samples_per_rev)."""
+def _rotor_samples(n_observers: int, samples_per_rev: int, n_rotors: int) -> int:
+    return (_positive_int("observers", n_observers) * _positive_int("samples_per_rev", samples_per_rev)
+            * _positive_int("n_rotors", n_rotors))
+
+
+def hsi_bytes(n_observers: int, samples_per_rev: int, n_rotors: int = 1) -> float:
+    """Peak memory (B) of the HSI job of one observer set (all rotors' signals read at once)."""
+    return HSI_FIXED_BYTES + HSI_BYTES_PER_SAMPLE * _rotor_samples(n_observers, samples_per_rev, n_rotors)
+
+
+def metrics_bytes(n_observers: int, samples_per_rev: int, n_rotors: int = 1, hsi: bool = False) -> float:
+    """Peak memory (B) of the metrics job of one observer set and variant (without its figure)."""
+    per_sample = METRICS_BYTES_PER_SAMPLE + (METRICS_BYTES_PER_HSI_SAMPLE if hsi else 0.0)
+    return METRICS_FIXED_BYTES + per_sample * _rotor_samples(n_observers, samples_per_rev, n_rotors)
+
+
+def estimate_bytes(stage: str, resolution: Mapping, n_observers: int = 1, n_rotors: int = 1, hsi: bool = False) -> float:
+    """Estimate (B) of one job of ``stage`` (``loads``, ``wake``, ``acoustics``, ``hsi``, ``metrics``)
+    from the campaign's ``resolution`` block (n_psi, n_r, wake_revolutions, samples_per_rev);
+    ``hsi``: the metrics job also reads HSI signals."""
     n_psi, n_r = resolution["n_psi"], resolution["n_r"]
     if stage == "loads":
         return loads_bytes(n_psi, n_r, n_rotors)
@@ -94,7 +117,11 @@ def estimate_bytes(stage: str, resolution: Mapping, n_observers: int = 1, n_roto
         return wake_bvi_bytes(n_psi, n_r, float(resolution["wake_revolutions"]), n_rotors)
     if stage == "acoustics":
         return acoustics_bytes(n_observers, resolution["samples_per_rev"], n_psi, n_r, n_rotors)
-    raise ValueError(f"estimate_bytes: stage '{stage}' has no estimate; expected loads, wake or acoustics")
+    if stage == "hsi":
+        return hsi_bytes(n_observers, resolution["samples_per_rev"], n_rotors)
+    if stage == "metrics":
+        return metrics_bytes(n_observers, resolution["samples_per_rev"], n_rotors, hsi)
+    raise ValueError(f"estimate_bytes: stage '{stage}' has no estimate; expected loads, wake, acoustics, hsi or metrics")
 
 
 def observer_count(spec: Mapping) -> int:

@@ -18,6 +18,10 @@ MEASURED_LOADS = [((90, 20), 11.2), ((360, 50), 21.2), ((720, 100), 40.3), ((144
                   ((2880, 200), 262.2)]
 MEASURED_WAKE = [((360, 50, 4.0), 101.5), ((360, 50, 8.0), 150.8), ((720, 50, 4.0), 154.6), ((720, 100, 4.0), 133.3)]
 MEASURED_ACOUSTICS = [((72, 256), 178.3), ((360, 1024), 167.6), ((360, 4096), 448.9), ((720, 4096), 797.8)]
+# two rotors (main + tail), synthetic signals: HSI; metrics without / with HSI signals
+MEASURED_HSI = [((72, 256), 107.3), ((360, 1024), 220.3), ((360, 4096), 535.3), ((720, 4096), 982.1)]
+MEASURED_METRICS = [((72, 256), 40.3, 44.7), ((360, 1024), 159.6, 203.2), ((360, 4096), 460.0, 678.3),
+                    ((720, 4096), 862.9, 1315.7)]
 
 
 def test_estimates_bound_the_measured_peaks_within_a_factor_two():
@@ -27,6 +31,11 @@ def test_estimates_bound_the_measured_peaks_within_a_factor_two():
         assert mb <= res.wake_bvi_bytes(n_psi, n_r, rev) / 1e6 <= 2.0 * mb
     for (n_obs, samples), mb in MEASURED_ACOUSTICS:
         assert mb <= res.acoustics_bytes(n_obs, samples, 360, 50) / 1e6 <= 2.0 * mb
+    for (n_obs, samples), mb in MEASURED_HSI:
+        assert mb <= res.hsi_bytes(n_obs, samples, 2) / 1e6 <= 2.0 * mb
+    for (n_obs, samples), plain, with_hsi in MEASURED_METRICS:
+        assert plain <= res.metrics_bytes(n_obs, samples, 2) / 1e6 <= 2.0 * plain
+        assert with_hsi <= res.metrics_bytes(n_obs, samples, 2, hsi=True) / 1e6 <= 2.0 * with_hsi
 
 
 def test_loads_estimate_bounds_the_traced_arrays_of_a_live_trim(repo_root):
@@ -64,8 +73,10 @@ def test_mem_mb_scales_with_the_resolution(repo_root):
     # a second rotor adds the held table of the first: 16 columns x 8 B per station (+ 14 x 8 B per wake row)
     assert res.loads_bytes(360, 50, 2) - res.loads_bytes(360, 50) == 128.0 * 360 * 50 == res.loads_bytes(360, 50, 6) - res.loads_bytes(360, 50)
     assert res.wake_bvi_bytes(360, 50, 4.0, 2) - res.wake_bvi_bytes(360, 50, 4.0) == 128.0 * 18000 + 112.0 * 72 * 1441
-    with pytest.raises(ValueError, match="stage 'hsi' has no estimate"):
-        res.estimate_bytes("hsi", resolution)
+    assert res.estimate_bytes("metrics", resolution, n_obs, 2, hsi=True) == res.metrics_bytes(360, 1024, 2, True)
+    assert res.estimate_bytes("hsi", resolution, n_obs, 2) == res.hsi_bytes(360, 1024, 2)
+    with pytest.raises(ValueError, match="stage 'figures' has no estimate"):
+        res.estimate_bytes("figures", resolution)
     assert [res.observer_count(config["observer_sets"][k]) for k in ("hsi", "ground")] == [5, 169]
 
 
