@@ -47,21 +47,23 @@ VRS_SOURCE = (f"momentum theory (Glauert inflow) has no valid solution for -2 < 
               f"{JOHNSON_1980}, ch. 2); the vortex-ring region closes near V_x ~ v_h (Wolkovitch, J. AHS 17(3), 1972; "
               f"Johnson, NASA/TP-2005-213477)")
 LOCK_NUMBER_RANGE = (1.0, 25.0)
-LOCK_NUMBER_SOURCE = (f"Lock numbers of real blades lie between about 3 and 15 ({JOHNSON_1980}, ch. 5; {LEISHMAN_2006}, ch. 4); "
-                      f"NPS bounds 1-25")
+LOCK_NUMBER_SOURCE = (f"Lock numbers of real blades lie between about 3 and 15 ({JOHNSON_1980}, ch. 5; "
+                      f"{LEISHMAN_2006}, ch. 4); NPS bounds 1-25")
 FLAP_ANGLE_MAX_RAD = math.radians(15.0)
 FLAP_ANGLE_SOURCE = (f"linearised flap equation (sin b cos b ~ b, {JOHNSON_1980}, ch. 5): centrifugal moment error "
                      f"<= 4.5 % up to 15 deg")
-CONTROL_SOURCE = "the rotor trim searches |theta0|, |theta1c|, |theta1s| < 0.7 rad (nps.bet); a control at the bound is not a trim"
+CONTROL_SOURCE = ("the rotor trim searches |theta0|, |theta1c|, |theta1s| < 0.7 rad (nps.bet); "
+                  "a control at the bound is not a trim")
 WAKE_DIAMETERS = 2.0
-WAKE_SOURCE = ("oldest tip-vortex node at least one rotor diameter from its release point, travel phi R sqrt(mu^2 + lambda^2) "
-               "(Beddoes geometry, thesis eq. 5.4-5.7), and at least one revolution")
+WAKE_SOURCE = ("oldest tip-vortex node at least one rotor diameter from its release point, travel "
+               "phi R sqrt(mu^2 + lambda^2) (Beddoes geometry, thesis eq. 5.4-5.7), and at least one revolution")
 OBSERVER_CHORDS_MIN = 5.0
 OBSERVER_CHORD_SOURCE = ("compact-chord sources: the distance varies by c/2 across the chord, <= 10 % of the distance "
                          "from 5 chords on (docs/models/validity.md)")
 OBSERVER_RADII_MIN = 1.0
-OBSERVER_RADIUS_SOURCE = ("observer outside the sphere holding the blades: the acoustic analogy takes the observer in a "
-                          "medium at rest (Farassat, NASA/TM-2007-214853), Pegg's level a far-field 1/r^2 law (NASA TM-80200)")
+OBSERVER_RADIUS_SOURCE = ("observer outside the sphere holding the blades: the acoustic analogy takes the observer in "
+                          "a medium at rest (Farassat, NASA/TM-2007-214853), Pegg's level a far-field 1/r^2 law "
+                          "(NASA TM-80200)")
 PEGG_SOURCE = "Pegg, NASA TM-80200 (1979), eq. 3.1-3.3 (thesis)"
 
 
@@ -175,7 +177,8 @@ def check_lock_number(lock_number: float, name: str, stage: str = "config") -> F
     low, high = LOCK_NUMBER_RANGE
     if math.isfinite(lock_number) and low <= lock_number <= high:
         return None
-    return Finding(f"rotor '{name}': Lock number", float(lock_number), f"within [{low:g}, {high:g}]", LOCK_NUMBER_SOURCE, stage)
+    return Finding(f"rotor '{name}': Lock number", float(lock_number), f"within [{low:g}, {high:g}]",
+                   LOCK_NUMBER_SOURCE, stage)
 
 
 def check_flap_angle(beta0_rad: float, beta1c_rad: float, beta1s_rad: float, name: str,
@@ -295,7 +298,8 @@ def aircraft_findings(aircraft: Mapping, speed_of_sound_mps: float,
     out = []
     for rotor in aircraft["rotors"]:
         omega = rotor["omega_rad_s"] * (omega_scale or {}).get(rotor["name"], 1.0)
-        out.append(check_tip_mach_hover(omega, rotor["radius_m"], speed_of_sound_mps, rotor["name"], _foil(rotor, "mach_cap")))
+        out.append(check_tip_mach_hover(omega, rotor["radius_m"], speed_of_sound_mps, rotor["name"],
+                                        _foil(rotor, "mach_cap")))
         out.append(check_lock_number(rotor["lock_number"], rotor["name"]))
     return [f for f in out if f is not None]
 
