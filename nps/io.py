@@ -4,6 +4,11 @@ Every artifact is written through :func:`write_table`: columns are cast to an ex
 pyarrow schema (so an all-null column never gets a ``null`` type), the file is written to a
 temporary name in the target directory and renamed into place (an interrupted run leaves no
 half-written artifact), and no wall-clock data enters the file (same inputs, same bytes).
+
+Files: an artifact gets the permissions of the process umask (0666 & ~umask, as ``open`` gives);
+its temporary file ``.{name}.{8 random characters}.tmp`` is removed when the write fails, and
+temporaries of the same output left by a killed run (SIGKILL cannot be caught) are removed the
+next time that output is written. One writer per output path at a time (the workflow's rule).
 """
 
 from __future__ import annotations
@@ -11,7 +16,8 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-import tempfile
+import re
+import secrets
 from pathlib import Path
 from typing import Mapping
 
@@ -85,8 +91,8 @@ def write_table(
         meta[f"nps.{key}".encode()] = json.dumps(value, sort_keys=True, default=_json_default).encode()
     table = table.replace_schema_metadata({**(table.schema.metadata or {}), **meta})
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
+    remove_stale_temporaries(path)
+    tmp = _create_temporary(path)
     try:
         pq.write_table(table, tmp, compression="zstd", write_statistics=True)
         os.replace(tmp, path)
@@ -95,6 +101,37 @@ def write_table(
             os.unlink(tmp)
         raise
     return path
+
+
+_TEMPORARY_TOKEN = re.compile(r"[a-z0-9_]{8}")  # also the names tempfile.mkstemp made before
+
+
+def _create_temporary(path: Path) -> Path:
+    """Create ``.{name}.{token}.tmp`` next to ``path`` with mode 0666 & ~umask (O_EXCL, new token on collision)."""
+    while True:
+        tmp = path.with_name(f".{path.name}.{secrets.token_hex(4)}.tmp")
+        try:
+            os.close(os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666))
+            return tmp
+        except FileExistsError:
+            continue
+
+
+def remove_stale_temporaries(path: str | os.PathLike) -> list[Path]:
+    """Remove the temporary files ``.{name}.{token}.tmp`` a killed write of ``path`` left behind; returns them."""
+    path = Path(path)
+    prefix, removed = f".{path.name}.", []
+    if not path.parent.is_dir():
+        return removed
+    for entry in sorted(os.scandir(path.parent), key=lambda e: e.name):
+        name = entry.name
+        if name.startswith(prefix) and name.endswith(".tmp") and _TEMPORARY_TOKEN.fullmatch(name[len(prefix):-4]):
+            try:
+                os.unlink(entry.path)
+            except FileNotFoundError:
+                continue
+            removed.append(Path(entry.path))
+    return removed
 
 
 def _json_default(value):
