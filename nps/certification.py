@@ -81,12 +81,14 @@ def microphone_histories(bands_db: np.ndarray, band_numbers: np.ndarray, record_
     return pd.DataFrame(rows), np.array(histories)
 
 
-def certify(procedure: Procedure, hemisphere: Hemisphere, max_mass_kg: float, ground: Ground = Ground()) -> ProcedureResult:
-    """Fly ``procedure`` with ``hemisphere`` and evaluate EPNL at its three microphones."""
+def certify(procedure: Procedure, hemisphere: Hemisphere, max_mass_kg: float, ground: Ground = Ground(),
+            absorption: bool = True) -> ProcedureResult:
+    """Fly ``procedure`` with ``hemisphere`` and evaluate EPNL at its three microphones (in the
+    reference atmosphere; ``absorption=False`` drops the air absorption)."""
     atm = procedure.atmosphere
     path = procedure.path
     trajectory = Trajectory(path.knot_time_s, path.knot_position_m, np.zeros(len(path.legs), dtype=np.int64),
-                            (atm,) * len(path.legs))
+                            (atm if absorption else None,) * len(path.legs))
     times = reception_times(trajectory, procedure.microphones_m, atm.speed_of_sound_mps)
     hist = propagate([hemisphere], trajectory, procedure.microphones_m, times, atm.speed_of_sound_mps, ground,
                      store_bands=True)
@@ -95,6 +97,17 @@ def certify(procedure: Procedure, hemisphere: Hemisphere, max_mass_kg: float, gr
     table.insert(1, "y_m", procedure.microphones_m[:, 1])
     return ProcedureResult(procedure.name, table, times, pnlt_hist, hist.la_db, float(table["epnl_db"].mean()),
                            noise_limit_epndb(procedure.name, max_mass_kg))
+
+
+def histories_table(results) -> pd.DataFrame:
+    """Procedure × microphone × record: time_s, pnlt_db, la_db of every procedure result."""
+    return pd.concat([pd.DataFrame({
+        "procedure": r.name,
+        "microphone": np.repeat(list(MICROPHONE_NAMES), r.time_s.size),
+        "time_s": np.tile(r.time_s, len(MICROPHONE_NAMES)),
+        "pnlt_db": r.pnlt_db.ravel(),
+        "la_db": r.la_db.ravel(),
+    }) for r in results], ignore_index=True)
 
 
 def summary_table(aircraft: str, max_mass_kg: float, results) -> pd.DataFrame:

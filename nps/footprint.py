@@ -117,25 +117,26 @@ class Footprint:
 
 
 def mission_trajectory(path: FlightPath, hemispheres: Mapping[str, Hemisphere], delta_t_k: float,
-                       relative_humidity_pct: float) -> tuple[Trajectory, list]:
-    """Trajectory of ``path`` with one hemisphere per distinct segment id (order of first use)."""
+                       relative_humidity_pct: float, absorption: bool = True) -> tuple[Trajectory, list]:
+    """Trajectory of ``path`` with one hemisphere per distinct segment id (order of first use);
+    ``absorption=False`` gives the legs no atmosphere (no air absorption)."""
     order = list(dict.fromkeys(path.segments))
     missing = [s for s in order if s not in hemispheres]
     if missing:
         raise FootprintError(f"hemispheres: no source hemisphere for segment(s) {missing} of the flight profile")
     index = np.array([order.index(s) for s in path.segments], dtype=np.int64)
-    trajectory = Trajectory(path.knot_time_s, path.knot_position_m, index,
-                            atmospheres_along(path, delta_t_k, relative_humidity_pct))
+    atmospheres = atmospheres_along(path, delta_t_k, relative_humidity_pct) if absorption else (None,) * len(path.legs)
+    trajectory = Trajectory(path.knot_time_s, path.knot_position_m, index, atmospheres)
     return trajectory, [hemispheres[s] for s in order]
 
 
 def mission_footprint(path: FlightPath, hemispheres: Mapping[str, Hemisphere], grid: GroundGrid,
                       microphones: Mapping[str, Sequence[float]], speed_of_sound_mps: float, delta_t_k: float = 0.0,
                       relative_humidity_pct: float = 70.0, ground: Ground = Ground(),
-                      levels_db=CONTOUR_LEVELS_DB) -> Footprint:
+                      levels_db=CONTOUR_LEVELS_DB, absorption: bool = True) -> Footprint:
     """Fly ``path`` (legs in order) with the segments' ``hemispheres`` over ``grid`` and the named
     ``microphones`` (name → (x, y, z) in E); see the module doc for the metrics."""
-    trajectory, hemis = mission_trajectory(path, hemispheres, delta_t_k, relative_humidity_pct)
+    trajectory, hemis = mission_trajectory(path, hemispheres, delta_t_k, relative_humidity_pct, absorption)
     points = grid.points()
     mic_names = list(microphones)
     mics = np.array([microphones[m] for m in mic_names], float).reshape(-1, 3)

@@ -14,19 +14,19 @@ nps.source_hemisphere). Slow (~1 min).
 import numpy as np
 import pytest
 
-from nps.acoustics import Observers, TimeGrid, radiate_rotor
+from nps.acoustics import LOADING, THICKNESS, Observers, TimeGrid
 from nps.atmosphere import isa
 from nps.bet import DiskGrid, trim_rotor
-from nps.cli.rotor_acoustics import rotor_signals
 from nps.config import load_aircraft
 from nps.metrics import rotor_solidities
 from nps.observers import hemisphere
 from nps.propagation import Ground, Trajectory, propagate
 from nps.rotor import OperatingPoint, RotorGeometry
-from nps.sources import ThicknessModel
+from nps.signals import signals_table
+from nps.sources import ThicknessModel, common_grid, radiate_rotor
 from nps.source_hemisphere import hemisphere_from_table, source_hemisphere_table
 from nps.spectra import P_REF_PA
-from nps.trim import FlightCondition, trim_aircraft
+from nps.trim import FlightCondition, trim_aircraft, trim_row
 
 HEIGHT_M = 150.0
 N_REV = 4
@@ -52,7 +52,11 @@ def test_hemisphere_propagation_matches_direct_f1a(repo_root):
 
     # (1) hemisphere product -> propagation
     obs = hemisphere(hub, radius, 10, 36, velocity)
-    signals = {name: rotor_signals(disks[name], trim, obs, name, "main", SAMPLES_PER_REV, model, hinge[name])
+    moving = Observers(obs[["x_m", "y_m", "z_m"]].to_numpy(float), obs[["vx_mps", "vy_mps", "vz_mps"]].to_numpy(float))
+    one_rev = common_grid(trim_row(trim, "main"), SAMPLES_PER_REV)
+    signals = {name: signals_table(obs["observer"].to_numpy(), (LOADING, THICKNESS),
+                                   radiate_rotor(disks[name], trim_row(trim, name), moving, one_rev, thickness=model,
+                                                 hinge_offset_m=hinge[name]), one_rev, total=False)
                for name in disks}
     table = source_hemisphere_table(signals, obs, trim, rotor_solidities(aircraft), broadband_on=False,
                                     reference_radius_m=radius / 2.0)
@@ -73,8 +77,8 @@ def test_hemisphere_propagation_matches_direct_f1a(repo_root):
 
     # (2) direct F1A: moving rotors, fixed ground observers
     fixed = Observers(receivers_g, np.zeros_like(receivers_g))
-    p = sum(radiate_rotor(disks[name], row.to_dict(), fixed, grid, thickness=model, hinge_offset_m=hinge[name]).sum(axis=1)
-            for name, (_, row) in zip(disks, trim.iterrows()))
+    p = sum(radiate_rotor(disks[name], trim_row(trim, name), fixed, grid, thickness=model, hinge_offset_m=hinge[name]).sum(axis=1)
+            for name in disks)
     p = p - p.mean(axis=1, keepdims=True)
     direct = 10.0 * np.log10(np.mean(p**2, axis=1) / P_REF_PA**2)
     print("direct F1A OASPL", direct.round(2), "hemisphere-propagated", propagated.round(2))
