@@ -231,6 +231,9 @@ def reference_parameters(mission: Mapping, aircraft: str, segments: Mapping[str,
     climb = speeds.get(segments.get("takeoff"))
     if climb is None:
         raise FlightPathError(f"certification.segments.takeoff: expected a mission segment with speeds for '{aircraft}'")
+    if not climb["climb_speed_mps"] > 0:
+        raise FlightPathError(f"certification.segments.takeoff: expected the best-rate-of-climb segment (climb speed > 0), "
+                              f"'{segments['takeoff']}' has {climb['climb_speed_mps']} m/s")
     level = [v["forward_speed_mps"] for v in speeds.values() if v["climb_speed_mps"] == 0.0]
     if not level:
         raise FlightPathError(f"mission: no level segment for '{aircraft}' to take V_H from")

@@ -68,6 +68,8 @@ def test_reference_procedures_geometry():
     assert ap.speed_mps == params["vy_mps"]
     assert to.microphones_m.tolist() == [[0.0, 0.0, 1.2], [0.0, 150.0, 1.2], [0.0, -150.0, 1.2]]
     assert to.atmosphere.temperature_k == pytest.approx(298.15)
+    with pytest.raises(FlightPathError, match="segments.takeoff: expected the best-rate-of-climb"):
+        reference_parameters(MISSION, "heli", {"takeoff": "seg2"})
     with pytest.raises(FlightPathError, match="vy_mps"):
         certification_procedure("approach", "seg3", {"vh_mps": 80.0})
 
