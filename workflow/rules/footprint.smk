@@ -4,29 +4,6 @@
 # ground grid and the named microphones). Scheduled when config has `footprint` and the mission a profile.
 
 
-def source_set():
-    return config["footprint"]["source_set"]
-
-
-def product_variant(segment):
-    """The load variant of the product: with BVI wherever it is computed (as the summary)."""
-    return CAMPAIGN.variants(segment)[-1]
-
-
-def source_hemisphere_inputs(wildcards):
-    variant = product_variant(wildcards.segment)
-    base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
-    inputs = {"signals": f"{base}/acoustics/{source_set()}_{variant}", "trim": f"{base}/trim.parquet",
-              "observers": f"{base}/observers/{source_set()}.parquet"}
-    if wildcards.segment in CAMPAIGN.hsi_segments():
-        inputs["hsi"] = f"{base}/hsi/{source_set()}_{variant}"
-    return inputs
-
-
-def profile_segments():
-    return list(dict.fromkeys(leg["segment"] for leg in CAMPAIGN.mission.get("profile", [])))
-
-
 rule source_hemisphere:
     input:
         unpack(source_hemisphere_inputs),
@@ -50,10 +27,6 @@ rule source_hemisphere:
         runtime=10,
     script:
         STAGE_SCRIPT
-
-
-def footprint_inputs(wildcards):
-    return {f"hemisphere_{s}": f"{RESULTS}/{wildcards.aircraft}/{s}/source_hemisphere.parquet" for s in profile_segments()}
 
 
 rule footprint:
