@@ -12,7 +12,8 @@ grid of ``record_s`` = 0.5 s. At every receiver:
   (every record has exactly one emitting segment, nps.propagation), so the mission SEL is the
   energy sum of the segment SELs;
 * at the named microphones also the band histories, PNLT(t_k) and EPNL
-  (nps.certification.microphone_histories). The grid gets no EPNL: the A36.4.3 tone correction of
+  (nps.certification.microphone_histories), for the mission and per leg (the leg's records
+  only, the others at the level floor). The grid gets no EPNL: the A36.4.3 tone correction of
   nps.metrics takes ~0.2 ms per spectrum, minutes for a 15 000-receiver grid.
 
 Contour area of a metric at level L: the number of grid points with metric ≥ L times the grid
@@ -165,6 +166,12 @@ def mission_footprint(path: FlightPath, hemispheres: Mapping[str, Hemisphere], g
         table, pnlt_hist = microphone_histories(hist.bands_db, hist.band_numbers, RECORD_S)
         expo = exposure_metrics(hist.la_db, hist.segment, n_leg)
         table["sel_db"] = expo["sel_db"]
+        for k in range(n_leg):
+            # the leg's own records (rays emitted during leg k), the others at the level floor
+            leg_bands = np.where((hist.segment == k)[..., None], hist.bands_db, LEVEL_FLOOR_DB)
+            table[f"leg{k}_epnl_db"] = microphone_histories(leg_bands, hist.band_numbers, RECORD_S)[0]["epnl_db"]
+            table[f"leg{k}_lamax_db"] = expo["segment_lamax_db"][:, k]
+            table[f"leg{k}_sel_db"] = expo["segment_sel_db"][:, k]
         table.insert(0, "microphone", mic_names)
         for i, axis in enumerate("xyz"):
             table.insert(1 + i, f"{axis}_m", mics[:, i])

@@ -85,6 +85,7 @@ def test_mission_footprint_two_segments():
     assert np.abs(mirror.to_numpy() - mirror.reindex(list(zip(g["x_m"], -g["y_m"]))).to_numpy()).max() < 1e-9
     mic = fp.microphones.iloc[0]
     assert mic["lamax_db"] > 70.0 and np.isfinite(mic["epnl_db"])
+    assert mic["leg0_epnl_db"] > mic["leg1_epnl_db"] and mic["leg0_epnl_db"] <= mic["epnl_db"] + 1e-9
     h = fp.histories
     assert h["leg"].iloc[int(h["la_db"].argmax())] == 0 and set(h["leg"]) == {-1, 0, 1}
     assert set(fp.areas["metric"]) == {"sel_db", "lamax_db"}
