@@ -46,6 +46,8 @@ from typing import ClassVar, Protocol
 
 import numpy as np
 
+from nps.jit import kernel
+
 _FIELD = 7
 _PER_LINE = 9
 _RANGE_SLACK_RAD = 1e-9
@@ -146,7 +148,7 @@ class PolarTable:
     source: str
 
     def __post_init__(self):
-        a, m, v = (np.asarray(x, dtype=float) for x in (self.alpha_rad, self.mach, self.values))
+        a, m, v = (np.ascontiguousarray(x, dtype=float) for x in (self.alpha_rad, self.mach, self.values))
         where = f"{self.source}: {self.name}"
         if a.ndim != 1 or a.size < 2 or not np.all(np.diff(a) > 0.0):
             raise AirfoilError(f"{where}: angles of attack: expected at least two, strictly increasing")
@@ -172,18 +174,31 @@ class PolarTable:
                 f"outside the table's range [{math.degrees(a[0]):.2f}, {math.degrees(a[-1]):.2f}] deg; "
                 "extend the polar to +-180 deg (extrapolation: viterna) or give a wider table"
             )
-        i = np.clip(np.searchsorted(a, alpha, side="right") - 1, 0, a.size - 2)
-        ta = np.clip((alpha - a[i]) / (a[i + 1] - a[i]), 0.0, 1.0)
-        v = self.values
-        if self.mach.size == 1:
-            return v[i, 0] + ta * (v[i + 1, 0] - v[i, 0])
-        m = self.mach
-        mc = np.clip(mach, m[0], m[-1])
-        j = np.clip(np.searchsorted(m, mc, side="right") - 1, 0, m.size - 2)
-        tm = (mc - m[j]) / (m[j + 1] - m[j])
-        low_m = v[i, j] + ta * (v[i + 1, j] - v[i, j])
-        high_m = v[i, j + 1] + ta * (v[i + 1, j + 1] - v[i, j + 1])
-        return low_m + tm * (high_m - low_m)
+        out = np.empty(alpha.shape)
+        _bilinear(a, self.mach, self.values, alpha.ravel(), mach.ravel(), out.reshape(-1))
+        return out
+
+
+@kernel
+def _bilinear(alpha_grid, mach_grid, values, alpha, mach, out):
+    """out[k] = values bilinearly interpolated at (alpha[k], mach[k]); Mach clamped to the grid.
+
+    α must lie within the grid (checked by the caller); one Mach number: linear in α only.
+    """
+    na, nm = alpha_grid.size, mach_grid.size
+    for k in range(alpha.size):
+        x = alpha[k]
+        i = min(max(np.searchsorted(alpha_grid, x, side="right") - 1, 0), na - 2)
+        ta = min(max((x - alpha_grid[i]) / (alpha_grid[i + 1] - alpha_grid[i]), 0.0), 1.0)
+        if nm == 1:
+            out[k] = values[i, 0] + ta * (values[i + 1, 0] - values[i, 0])
+            continue
+        y = min(max(mach[k], mach_grid[0]), mach_grid[nm - 1])
+        j = min(max(np.searchsorted(mach_grid, y, side="right") - 1, 0), nm - 2)
+        tm = (y - mach_grid[j]) / (mach_grid[j + 1] - mach_grid[j])
+        low = values[i, j] + ta * (values[i + 1, j] - values[i, j])
+        high = values[i, j + 1] + ta * (values[i + 1, j + 1] - values[i, j + 1])
+        out[k] = low + tm * (high - low)
 
 
 @dataclass(frozen=True, eq=False)
