@@ -1,7 +1,7 @@
 """Rotor description shared by the loads, wake, BVI and acoustics stages.
 
 Geometry comes from an aircraft configuration file (``config/aircraft/*.yaml``, validated
-by ``workflow/schemas/aircraft.schema.yaml``); the operating point comes from the aircraft
+by ``nps/schemas/aircraft.schema.yaml``); the operating point comes from the aircraft
 trim artifact (``trim.parquet``, one row per rotor). Frames and signs: docs/conventions.md.
 """
 
