@@ -230,13 +230,14 @@ def section_forces(
     through the disk), pitch θ (rad), radius r (m). With the resultant W = √(U_T² + U_P²),
     inflow angle φ (cos φ = U_T/W, sin φ = U_P/W, any quadrant):
 
-    - angle of attack α = θ − φ reduced mod π to [−π/2, π/2): a section in reverse flow
-      (U_T < 0, wind from the trailing edge) is a symmetric section seen from behind;
-    - c_l = a (α − α0) / √(1 − min(M, M_cap)²) (Prandtl–Glauert, bounded near M = 1),
-      clipped to ±c_l,max (stall), M = W / c;
+    - angle of attack α = θ − φ reduced mod π to [−π/2, π/2) (the reported angle);
+    - c_l, c_d of the local section at M = W / c (:meth:`RotorGeometry.coefficients_at`,
+      ``nps.airfoils``): for the default linear airfoil c_l = a (α − α0) / √(1 − min(M, M_cap)²)
+      clipped to ±c_l,max and c_d = cd0 + cd1 α + cd2 α², a section in reverse flow (U_T < 0)
+      being a symmetric section seen from behind; a ±180° table is read at the full angle;
     - Prandtl tip loss on the lift, F = (2/π) arccos(exp(−B (R − r) / (2 r |sin φ|)))
-      (F → 0 at the tip), when ``tip_loss``;
-    - c_d = cd0 + cd1 α + cd2 α² (not affected by tip loss);
+      (F → 0 at the tip), when ``tip_loss`` (not on the drag);
+    - c the local chord (:meth:`RotorGeometry.chord_at`);
     - F_z = ½ ρ c W (F c_l U_T − c_d U_P) = L cos φ − D sin φ,
       F_x = ½ ρ c W (F c_l U_P + c_d U_T) = L sin φ + D cos φ;
     - Γ = ½ c F c_l W, which is Kutta–Joukowski L/(ρ W) and equals the thrust-direction
@@ -247,25 +248,23 @@ def section_forces(
     ut, up, theta, r = np.broadcast_arrays(
         *(np.asarray(v, dtype=float) for v in (ut_mps, up_mps, theta_rad, r_m))
     )
-    foil = geometry.airfoil
     w = np.sqrt(ut * ut + up * up)
     # atan(U_P/U_T) without the division: equal to φ modulo π
     phi_mod = np.arctan2(np.where(ut < 0.0, -up, up), np.abs(ut))
     alpha = theta - phi_mod
     alpha = alpha - np.pi * np.floor(alpha / np.pi + 0.5)
     mach = w / speed_of_sound_mps
-    pg = np.sqrt(1.0 - np.minimum(mach, foil.mach_cap) ** 2)
-    cl = np.minimum(np.maximum(foil.lift_slope_per_rad * (alpha - foil.alpha0_rad) / pg, -foil.cl_max), foil.cl_max)
+    cl, cd, _ = geometry.coefficients_at(alpha, ut < 0.0, mach, r)
     if tip_loss:
         cl = cl * _tip_loss(w, up, r, geometry)
-    cd = foil.cd0 + foil.cd1 * alpha + foil.cd2 * alpha * alpha
-    half_rho_c_w = 0.5 * density_kg_m3 * geometry.chord_m * w
+    chord = geometry.chord_at(r)
+    half_rho_c_w = 0.5 * density_kg_m3 * chord * w
     return SectionForces(
         fz_N_per_m=half_rho_c_w * (cl * ut - cd * up),
         fx_N_per_m=half_rho_c_w * (cl * up + cd * ut),
         alpha_eff_rad=alpha,
         mach=mach,
-        circulation_m2_s=0.5 * geometry.chord_m * cl * w,
+        circulation_m2_s=0.5 * chord * cl * w,
     )
 
 
@@ -315,10 +314,6 @@ def check_geometry(geometry: RotorGeometry) -> None:
         ("thickness_ratio", 0.0 < g.thickness_ratio < 1.0, "0 < t/c < 1"),
         ("lock_number", math.isfinite(g.lock_number) and g.lock_number > 0.0, "a positive number"),
         ("rotation_sign", g.rotation_sign in (1, -1), "+1 or -1"),
-        ("airfoil.lift_slope_per_rad", g.airfoil.lift_slope_per_rad > 0.0, "a positive number"),
-        ("airfoil.cl_max", g.airfoil.cl_max > 0.0, "a positive number"),
-        ("airfoil.mach_cap", 0.0 < g.airfoil.mach_cap < 1.0, "0 < mach_cap < 1"),
-        ("airfoil.cd0", g.airfoil.cd0 >= 0.0, "a non-negative number"),
     ]
     for name, ok, expected in checks:
         if not ok:
@@ -678,8 +673,8 @@ def _result(disk: _Disk, c: Controls, x: np.ndarray, fields: dict, history: pd.D
         "psi_rad": np.repeat(disk.grid.psi_rad, n_r),
         "r_m": np.tile(disk.r, n_psi),
         "dr_m": np.tile(disk.dr, n_psi),
-        "chord_m": np.full(n_psi * n_r, g.chord_m),
-        "thickness_m": np.full(n_psi * n_r, g.chord_m * g.thickness_ratio),
+        "chord_m": full(g.chord_at(disk.r)),
+        "thickness_m": full(g.chord_at(disk.r) * g.thickness_ratio_at(disk.r)),
         "theta_rad": full(fields["theta"]),
         "beta_rad": full(fields["beta"]),
         "beta_dot_rad_s": full(fields["beta_dot"]),
