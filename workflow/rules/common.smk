@@ -196,3 +196,39 @@ def rotor_figure_inputs(wildcards):
     if wildcards.segment in bvi_segments():
         inputs.update(wake=f"{base}/wake", bvi=f"{base}/bvi")
     return inputs
+
+
+# ---- Cluster requests (threads, mem_mb, runtime) of every rule: nps.resources, from the resolution ----
+# ---- in config and the observer set / rotors of the job; mem_mb and runtime grow with the attempt.  ----
+def job_size(wildcards):
+    """nps.resources.JobSize of a job: config resolution, the job's rotors and observer set."""
+    from nps.resources import JobSize, observer_count
+
+    if "obsset" in wildcards.keys():
+        n_observers = observer_count(config["observer_sets"][wildcards.obsset])
+    elif "hemisphere" in config["observer_sets"]:  # the study figures read the hemisphere signals
+        n_observers = observer_count(config["observer_sets"]["hemisphere"])
+    else:
+        n_observers = 0
+    n_rotors = 1 if "rotor" in wildcards.keys() else len(rotor_names(wildcards.aircraft))
+    resolution = config["resolution"]
+    return JobSize(int(resolution["n_psi"]), int(resolution["n_r"]), int(resolution["wake_revolutions"]),
+                   int(resolution["samples_per_rev"]), n_rotors, n_observers)
+
+
+def job_threads(stage):
+    from nps.resources import threads
+
+    return lambda wildcards: threads(stage, job_size(wildcards))
+
+
+def job_mem_mb(stage):
+    from nps.resources import memory_mb
+
+    return lambda wildcards, attempt: memory_mb(stage, job_size(wildcards), attempt)
+
+
+def job_runtime(stage):
+    from nps.resources import runtime_min
+
+    return lambda wildcards, attempt: runtime_min(stage, job_size(wildcards), attempt)
