@@ -40,8 +40,9 @@ def _blocks(log: Path) -> tuple[dict[str, str], dict[str, datetime]]:
     return bench_job, finished
 
 
-def _members(slurm_log: Path) -> list[str]:
-    return [line.strip().split()[1] for line in slurm_log.read_text().splitlines() if line.strip().startswith("benchmark: ")]
+def _members(slurm_log: Path) -> set[str]:
+    """Benchmark paths of the rule jobs a SLURM job ran (its log prints each job block twice)."""
+    return {line.strip().split()[1] for line in slurm_log.read_text().splitlines() if line.strip().startswith("benchmark: ")}
 
 
 def _work_s(workdir: Path, benchmark: str) -> float:
@@ -69,10 +70,11 @@ def main(workdir: Path, ctld_log: Path) -> None:
         work = sum(_work_s(workdir, b) for b in benchmarks)
         in_job = (completed[job] - allocated[job]).total_seconds() - work
         poll = (seen - completed[job]).total_seconds()
-        rows.append((job, slurm_log.parent.name, len(benchmarks), work, in_job, poll))
-    print(f"{'SLURM job':>9}  {'rule / group':<48} {'jobs':>4} {'work s':>7} {'in-job s':>8} {'status s':>8}")
+        name = slurm_log.parent.relative_to(workdir / ".snakemake" / "slurm_logs").as_posix()
+        rows.append((job, name, len(benchmarks), work, in_job, poll))
+    print(f"{'SLURM job':>9}  {'rule or group / wildcards':<60} {'jobs':>4} {'work s':>7} {'in-job s':>8} {'status s':>8}")
     for job, name, n, work, in_job, poll in rows:
-        print(f"{job:>9}  {name:<48} {n:>4} {work:7.1f} {in_job:8.1f} {poll:8.1f}")
+        print(f"{job:>9}  {name:<60} {n:>4} {work:7.1f} {in_job:8.1f} {poll:8.1f}")
     n_slurm, n_rules = len(rows), sum(r[2] for r in rows)
     total = sum(r[4] + r[5] for r in rows)
     print(f"{n_slurm} SLURM jobs for {n_rules} rule jobs; work {sum(r[3] for r in rows):.1f} s; overhead "
