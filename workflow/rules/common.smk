@@ -125,7 +125,7 @@ def rotor_figure_inputs(wildcards):
     return inputs
 
 
-# ---- Cluster requests of every rule (nps.resources): threads, and mem_mb / runtime from the resolution ----
+# ---- Cluster requests of every job (nps.resources): threads, and mem_mb / runtime from the resolution ----
 # ---- in config, the job's rotors and observer set, growing with the attempt (profiles/slurm retries). ----
 def _job_load(wildcards):
     """(observers, rotors, HSI signals read) of a job; jobs without an observer set read the hemisphere's."""
