@@ -14,7 +14,7 @@ MODULES = sorted(
     for p in PACKAGE_DIR.rglob("*.py")
 )
 PHYSICS = ("acoustics", "atmosphere", "bet", "broadband", "bvi", "frames", "hsi", "metrics", "observers", "rotor",
-           "sources", "signals", "spectra", "trim", "wake", "jit")
+           "sources", "signals", "spectra", "trim", "wake", "jit", "airfoils", "blade", "control")
 
 
 def _module_level_imports(module: str) -> set[str]:
