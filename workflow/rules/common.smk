@@ -5,6 +5,7 @@ import sys
 from nps.config import ConfigError, load_campaign
 from nps.stages.code import stage_digest
 from nps.metrics import rotor_solidities
+import nps.resources as nps_resources
 
 
 
@@ -122,6 +123,29 @@ def rotor_figure_inputs(wildcards):
     if wildcards.segment in CAMPAIGN.bvi_segments():
         inputs.update(wake=f"{base}/wake", bvi=f"{base}/bvi")
     return inputs
+
+
+# ---- Cluster requests of every job (nps.resources): threads, and mem_mb / runtime from the resolution ----
+# ---- in config, the job's rotors and observer set, growing with the attempt (profiles/slurm retries). ----
+def _job_load(wildcards):
+    """(observers, rotors, HSI signals read) of a job; jobs without an observer set read the hemisphere's."""
+    obsset = wildcards.get("obsset", "hemisphere")
+    spec = config["observer_sets"].get(obsset)
+    n_observers = nps_resources.observer_count(spec) if spec else 1
+    n_rotors = len(rotor_names(wildcards.aircraft))
+    return n_observers, n_rotors, wildcards.get("segment") in CAMPAIGN.hsi_segments()
+
+
+def job_threads(stage):
+    return lambda wildcards: nps_resources.job_threads(stage, _job_load(wildcards)[0])
+
+
+def job_mem_mb(stage):
+    return lambda wildcards, attempt: nps_resources.job_mem_mb(stage, config["resolution"], *_job_load(wildcards), attempt)
+
+
+def job_runtime(stage):
+    return lambda wildcards, attempt: nps_resources.job_runtime_min(stage, config["resolution"], *_job_load(wildcards)[:2], attempt)
 
 
 # used by study.smk
