@@ -23,8 +23,6 @@ import math
 import os
 from typing import Mapping
 
-from nps.bet import DISK_COLUMNS
-from nps.wake import WAKE_COLUMNS
 
 INTERPRETER_BYTES = 250e6  # Python + numpy/pandas/pyarrow/numba + nps imported: 210-250 MB measured
 LOADS_FIXED_BYTES = 12e6
@@ -40,8 +38,12 @@ HSI_BYTES_PER_SAMPLE = 160.0  # per rotor sample: every rotor's signals are read
 METRICS_FIXED_BYTES = 60e6
 METRICS_BYTES_PER_SAMPLE = 140.0  # per rotor sample of the radiated signals
 METRICS_BYTES_PER_HSI_SAMPLE = 80.0  # per rotor sample of the HSI signals, when they enter
-DISK_TABLE_BYTES_PER_STATION = 8.0 * len(DISK_COLUMNS)  # a held loads/BVI disk table
-WAKE_TABLE_BYTES_PER_ROW = 8.0 * len(WAKE_COLUMNS)  # a held wake table
+# column counts of nps.bet.DISK_COLUMNS and nps.wake.WAKE_COLUMNS, written out so that Snakemake, which evaluates
+# the memory requests, need not import the numba modules (tests/unit/test_resources.py checks them)
+DISK_TABLE_COLUMNS = 16
+WAKE_TABLE_COLUMNS = 14
+DISK_TABLE_BYTES_PER_STATION = 8.0 * DISK_TABLE_COLUMNS  # a held loads/BVI disk table
+WAKE_TABLE_BYTES_PER_ROW = 8.0 * WAKE_TABLE_COLUMNS  # a held wake table
 MEM_MB_MARGIN = 1.25
 
 
