@@ -185,3 +185,17 @@ def test_cli_round_trip_and_errors(tmp_path, capsys, repo_root):
     assert read_metadata(tmp_path / "t.parquet")["obsset"] == "mics"
     assert nps_main(args + ["--rotor", "main", "nose"]) == 2
     assert "nose" in capsys.readouterr().err
+
+
+def test_campaign_output_options_and_their_errors(repo_root):
+    """``outputs`` is optional (schema defaults); tone observer sets must name configured sets."""
+    from nps.config import ConfigError, load_campaign, read_yaml
+
+    config = read_yaml(repo_root / "config/config.yaml")
+    bare = load_campaign({k: v for k, v in config.items() if k != "outputs"}, root=repo_root)
+    assert (bare.output_option("tone_harmonics"), bare.output_option("spectra_loudest")) == (10, 3)
+    assert bare.tone_observer_sets("seg5") == ["hemisphere", "hsi"]
+    only = load_campaign(dict(config, outputs={"tone_observer_sets": ["hsi"]}), root=repo_root)
+    assert only.tone_observer_sets("seg5") == ["hsi"] and only.tone_observer_sets("seg1") == []
+    with pytest.raises(ConfigError, match=r"outputs.tone_observer_sets\[0\]"):
+        load_campaign(dict(config, outputs={"tone_observer_sets": ["mics"]}), root=repo_root)
