@@ -14,7 +14,7 @@ MODULES = sorted(
     for p in PACKAGE_DIR.rglob("*.py")
 )
 PHYSICS = ("acoustics", "atmosphere", "bet", "broadband", "bvi", "frames", "hsi", "metrics", "observers", "rotor",
-           "sources", "signals", "spectra", "trim", "wake", "jit")
+           "sources", "signals", "spectra", "tones", "trim", "wake", "jit")
 
 
 def _module_level_imports(module: str) -> set[str]:
