@@ -132,3 +132,19 @@ def test_pegg_spellings_agree_and_warn_outside_the_data_range(tmp_path):
         warnings.simplefilter("error")
         silent, silent_bands = _run(tmp_path, aircraft, "none")
     assert "oaspl_broadband_db" not in silent.columns and "broadband" not in set(silent_bands.source)
+
+
+def test_metrics_command_chooses_the_model(tmp_path, capsys, repo_root):
+    """``python -m nps metrics --broadband bpm --disks DIR`` runs BPM; without --disks it stops with one line."""
+    from nps.__main__ import main as nps_main
+
+    aircraft = _aircraft()
+    _write_inputs(tmp_path, aircraft)
+    args = ["metrics", "--aircraft", str(repo_root / "config/aircraft/helicopter.yaml"), "--rotor", "main",
+            "--trim", str(tmp_path / "trim.parquet"), "--observers", str(tmp_path / "obs.parquet"),
+            "--signals", str(tmp_path / "sig"), "--out", str(tmp_path / "m.parquet"), "--bands-out", str(tmp_path / "b.parquet"),
+            "--no-absorption", "--broadband", "bpm"]
+    assert nps_main(args) == 2 and "--disks" in capsys.readouterr().err
+    assert nps_main(args + ["--disks", str(tmp_path / "loads")]) == 0
+    assert read_metadata(tmp_path / "m.parquet")["broadband"] == "bpm"
+    assert "oaspl_broadband_db" in read_table(tmp_path / "m.parquet").columns
