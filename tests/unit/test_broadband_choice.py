@@ -148,3 +148,11 @@ def test_metrics_command_chooses_the_model(tmp_path, capsys, repo_root):
     assert nps_main(args + ["--disks", str(tmp_path / "loads")]) == 0
     assert read_metadata(tmp_path / "m.parquet")["broadband"] == "bpm"
     assert "oaspl_broadband_db" in read_table(tmp_path / "m.parquet").columns
+
+
+def test_source_hemisphere_refuses_bpm_before_reading():
+    """The source-hemisphere product has Pegg or no broadband: ``bpm`` is a clear error, not Pegg in disguise."""
+    from nps.stages.source_hemisphere import run as source_hemisphere
+
+    with pytest.raises(ValueError, match="'bpm' is not available for source hemispheres"):
+        source_hemisphere({"signals": "missing"}, {}, {"rotors": ["main"], "broadband": "bpm"})
