@@ -359,6 +359,7 @@ def metrics_tables(
     hsi_signals: Mapping[str, pd.DataFrame] | None = None,
     broadband_on: bool = True,
     harmonics: tuple[int, int] = (7, 40),
+    broadband_msp: Mapping[str, np.ndarray] | None = None,
 ) -> tuple[pd.DataFrame, pd.DataFrame, ObserverSetLevels]:
     """Metrics and band tables of one aircraft × segment × observer set × variant.
 
@@ -367,6 +368,8 @@ def metrics_tables(
     ``observers``: observers artifact; ``trim``: trim artifact (first row = reference rotor,
     whose BPF defines BVISPL); ``solidity``: rotor → σ (blade area A_b = σ π R², C̄_L = 6 C_T/σ);
     ``atmosphere``: absorption over each rotor's hub-observer distance, or None for none.
+    ``broadband_msp``: rotor → broadband 1/3-octave band MSP (Pa², (n_observers, STUDY_BANDS), observers
+    in ascending id order) computed elsewhere (BPM), used instead of Pegg's when ``broadband_on``.
     Returns (metrics: one row per observer, bands: observer × source × band, the levels
     object with the narrowband tonal spectra, observers in ascending id order).
     """
@@ -410,7 +413,12 @@ def metrics_tables(
                 if atmosphere is not None:
                     p = absorb_periodic_signal(p, dt, dist, atmosphere)
                 summed[group] = summed.get(group, 0.0) + p
-        if broadband_on:
+        if broadband_on and broadband_msp is not None:
+            given = np.asarray(broadband_msp[name], dtype=float)
+            if given.shape != bb_msp.shape:
+                raise ValueError(f"broadband_msp of rotor '{name}': expected shape {bb_msp.shape}, got {given.shape}")
+            levels = level_db(given)
+        elif broadband_on:
             sigma = float(solidity[name])
             radius = float(row["radius_m"])
             rotor = broadband.PeggRotor(
@@ -420,6 +428,7 @@ def metrics_tables(
                 mean_lift_coefficient=broadband.mean_lift_coefficient(float(row["ct"]), sigma),
             )
             levels = broadband.band_levels_db(rotor, STUDY_BANDS, dist, cos_t, float(row["speed_of_sound_mps"]))
+        if broadband_on:
             if atmosphere is not None:
                 levels = absorb_band_levels(levels, centres, dist[:, None], atmosphere)
             bb_msp += msp_from_level(levels)

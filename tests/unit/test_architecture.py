@@ -14,7 +14,7 @@ MODULES = sorted(
     for p in PACKAGE_DIR.rglob("*.py")
 )
 PHYSICS = ("acoustics", "atmosphere", "bet", "broadband", "bvi", "frames", "hsi", "metrics", "observers", "rotor",
-           "sources", "signals", "spectra", "trim", "wake", "jit", "airfoils", "blade", "control", "propagation",
+           "sources", "signals", "spectra", "tones", "trim", "wake", "jit", "airfoils", "blade", "control", "propagation",
            "trajectory", "certification", "footprint", "source_hemisphere")
 
 

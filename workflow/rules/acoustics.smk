@@ -30,7 +30,7 @@ rule observers:
 rule acoustics:
     input:
         # every rotor's trimmed loads (variant base) or loads with the wake's induced velocity (variant bvi)
-        disks=lambda wildcards: f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}/{'bvi' if wildcards.variant == 'bvi' else 'loads'}",
+        disks=variant_disks,
         trim=f"{BASE}/trim.parquet",
         observers=f"{BASE}/observers/{{obsset}}.parquet",
     output:
