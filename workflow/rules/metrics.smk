@@ -32,7 +32,6 @@ rule metrics:
     benchmark:
         bench_path("metrics", "{aircraft}/{segment}/{obsset}_{variant}")
     threads: 1
-    group: "radiate"
     resources:
         mem_mb=job_mem_mb("metrics"),
         runtime=job_runtime("metrics"),
