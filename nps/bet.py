@@ -338,9 +338,14 @@ def check_operating_point(op: OperatingPoint, name: str) -> None:
 
 
 class _Disk:
-    """Static arrays of one rotor × operating point × grid and the disk evaluation."""
+    """Static arrays of one rotor × operating point × grid and the disk evaluation.
 
-    def __init__(self, geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, tip_loss: bool):
+    ``interference``: optional (ΔU_T, ΔU_P) fields (n_psi, n_r) in m/s added to the velocities
+    (other rotors' induced velocity, ``nps.interaction``); None leaves the model untouched.
+    """
+
+    def __init__(self, geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, tip_loss: bool,
+                 interference: tuple[np.ndarray, np.ndarray] | None = None):
         self.g, self.op, self.grid, self.tip_loss = geometry, op, grid, tip_loss
         R, omega, s = geometry.radius_m, op.omega_rad_s, geometry.rotation_sign
         self.r, self.dr = radial_stations(geometry, grid.n_r)
@@ -350,6 +355,16 @@ class _Disk:
         self.mu_yp = s * op.mu_y
         self.mu = math.hypot(op.mu_x, op.mu_y)
         self.ut = omega * self.r[None, :] + self.tip_speed * (op.mu_x * self.sin - self.mu_yp * self.cos)
+        self.extra_up = None
+        if interference is not None:
+            d_ut, d_up = (np.asarray(a, dtype=float) for a in interference)
+            if d_ut.shape != (grid.n_psi, grid.n_r) or d_up.shape != d_ut.shape:
+                raise ValueError(f"rotor '{geometry.name}': interference: expected two ({grid.n_psi}, {grid.n_r}) "
+                                 f"fields, got {d_ut.shape}, {d_up.shape}")
+            if not (np.isfinite(d_ut).all() and np.isfinite(d_up).all()):
+                raise ValueError(f"rotor '{geometry.name}': interference: non-finite velocities")
+            self.ut = self.ut + d_ut
+            self.extra_up = d_up
         self.ur = self.tip_speed * (op.mu_x * self.cos + self.mu_yp * self.sin)
         self.rbar = self.r[None, :] / R
         self.twist = geometry.twist_at(self.r)[None, :]
@@ -377,6 +392,8 @@ class _Disk:
         beta = beta0 + beta1c * self.cos + beta1s * self.sin
         beta_dot = omega * (beta1s * self.cos - beta1c * self.sin)
         up = self.tip_speed * lam + (self.r[None, :] - self.g.hinge_offset_m) * beta_dot + self.ur * beta
+        if self.extra_up is not None:
+            up = up + self.extra_up
         forces = section_forces(self.ut, up, theta, self.r[None, :], self.g, self.op.density_kg_m3,
                                 self.op.speed_of_sound_mps, tip_loss=self.tip_loss)
         self.evaluations += 1
@@ -522,8 +539,12 @@ def trim_rotor(
     max_outer: int = 20,
     max_secant: int = 12,
     tip_loss: bool = True,
+    interference: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> RotorTrim:
     """Trim θ0, θ1s, θ1c to the thrust and hub-moment targets of ``op`` (thesis Fig. 4.3).
+
+    ``interference``: optional (ΔU_T, ΔU_P) (n_psi, n_r) m/s added to the section velocities
+    (other rotors' wakes, see :class:`_Disk`); λ0 stays the rotor's own momentum inflow.
 
     Each outer iteration runs the three steps (θ0 → T, phased cyclic → M_y, then → M_x;
     module docstring), each a secant iteration to a quarter of its tolerance with the inflow and
@@ -548,7 +569,7 @@ def trim_rotor(
     m_abs = tol_rel * thrust_ref * geometry.radius_m
     tol = np.array([tol_rel * thrust_ref, max(tol_rel * abs(target[1]), m_abs), max(tol_rel * abs(target[2]), m_abs)])
 
-    disk = _Disk(geometry, op, grid, tip_loss)
+    disk = _Disk(geometry, op, grid, tip_loss, interference)
     x0, theta0 = _initial_state(geometry, op, op.thrust_N)
     solver = _StateSolver(disk, x0)
     ctrl = np.array([theta0, 0.0, 0.0])  # θ0, θ1c, θ1s

@@ -21,8 +21,9 @@ rotor is at ψ = 0 at t = 0, as in :class:`nps.rotor.RotorMotion`); p's distorti
 interpolated linearly (periodic) in ψ and linearly in φ.
 
 Far wake: the free wake is continued by ``far_revolutions`` turns convected rigidly with the
-velocity of the last free node, X[i, J+m] = X[i−m, J] + m Δt V[i−m, J] (Δt = Δ/Ω), so that
-the end of the free wake is not a truncated helix (which would halve the downwash there).
+mean velocity of the last free turn, X[i, J+m] = X[i−m, J] + m Δt V̄_J (Δt = Δ/Ω, V̄_J the
+mean over ψ of V[·, J]), so that the end of the free wake is not a truncated helix (which
+would halve the downwash there) and the old, rolled-up wake cannot wander.
 
 Discretisation (Bagai & Leishman 1995, five-point central difference about (i−½, j−½), with
 Δψ = Δφ the ψ and φ differences combine into a march along the characteristic i − j):
@@ -68,17 +69,20 @@ class FreeWakeError(RuntimeError):
 class FreeWakeModel:
     """Parameters of the free-wake relaxation (SI; docs/models/wake_bvi.md).
 
-    ``steps_per_rev`` N: relaxation grid Δψ = Δφ = 2π/N; ``revolutions``: wake age kept;
-    ``core_radius_chords``: initial physical core r_c0/c; ``core_growth`` with ``growth_a1``
+    ``steps_per_rev`` N: relaxation grid Δψ = Δφ = 2π/N; ``revolutions``: free (relaxed) wake
+    age; ``far_revolutions``: rigid far wake after it; ``core_radius_chords``: initial physical
+    core r_c0/c; ``core_floor_chords``: lower bound of r_c0/c in the node kinematics (the
+    resolution of the straight-segment wake on the relaxation grid; docs); ``core_growth`` with ``growth_a1``
     and ``viscosity_m2_s``; ``relaxation`` ω in (0, 1]; ``tolerance_radius_fraction``:
     convergence when the largest node change between two iterations is below this × R;
     ``max_iterations``; ``vatistas_n``.
     """
 
     steps_per_rev: int = 36
-    revolutions: float = 4.0
-    far_revolutions: float = 2.0
+    revolutions: float = 1.5
+    far_revolutions: float = 1.0
     core_radius_chords: float = HART_II_CORE_RADIUS_CHORDS
+    core_floor_chords: float = 0.5
     core_growth: bool = True
     growth_a1: float = BHAGWAT_LEISHMAN_A1
     viscosity_m2_s: float = wake.AIR_KINEMATIC_VISCOSITY_M2_S
@@ -93,6 +97,7 @@ class FreeWakeModel:
             "revolutions": self.revolutions > 0.0,
             "far_revolutions": self.far_revolutions >= 0.0,
             "core_radius_chords": self.core_radius_chords > 0.0,
+            "core_floor_chords": self.core_floor_chords >= 0.0,
             "growth_a1": self.growth_a1 >= 0.0,
             "viscosity_m2_s": self.viscosity_m2_s > 0.0,
             "relaxation": 0.0 < self.relaxation <= 1.0,
@@ -197,8 +202,9 @@ def _sources(rotors, beddoes: wake.WakeModel, distortion, core_radius_chords, co
 
 
 def _physical_sources(rotors, beddoes, model: FreeWakeModel, distortion) -> _Sources:
-    return _sources(rotors, beddoes, distortion, model.core_radius_chords, model.core_growth, model.growth_a1,
-                    model.viscosity_m2_s)
+    """Node kinematics: r_c0 = max(physical core, floor) · c, growing with age."""
+    return _sources(rotors, beddoes, distortion, max(model.core_radius_chords, model.core_floor_chords),
+                    model.core_growth, model.growth_a1, model.viscosity_m2_s)
 
 
 def _lifting_line_sources(rotors, beddoes: wake.WakeModel, distortion) -> _Sources:
@@ -269,33 +275,38 @@ def _rotor_nodes(p, gamma_tab, beta_tab, table, table_step, core, psi0, n_age, d
 @kernel(parallel=True)
 def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortion, table_step, core, rot, off, sign,
                     bound, n_age, dphi, vatistas_n):
-    """Velocity (n_src, n_rows, n_pts, 3) in the target's H' induced at ``points``
-    (n_rows, n_pts, 3) by every source rotor's tip vortices; row i is the instant when the
-    target's blade 0 is at ``row_psi[i]``, source q's blade 0 then at omega_ratio[q]·row_psi[i].
-    ``bound[q]``: add the blades' bound vortices, straight from the hub centre to the tip node
-    (strength Γ_v, core r_c0), closing each tip vortex into a horseshoe."""
+    """Velocity (n_tgt, n_src, n_rows, n_pts, 3) induced at ``points`` (n_tgt, n_rows, n_pts, 3)
+    by every source rotor's tip vortices, in each target rotor's H'. Row i of target t is the
+    instant when the target's blade 0 is at ``row_psi[i]``; source q's blade 0 is then at
+    omega_ratio[t, q]·row_psi[i]. rot (n_tgt, n_src, 3, 3), off (n_tgt, n_src, 3), sign
+    (n_tgt, n_src) map source H' to target H' (:func:`_transforms`); ``bound[t, q]``: add the
+    blades' bound vortices, straight from the hub centre to the tip node (strength Γ_v, core
+    r_c0), closing each tip vortex into a horseshoe."""
     n_src = params.shape[0]
-    n_rows, n_pts = points.shape[0], points.shape[1]
-    out = np.zeros((n_src, n_rows, n_pts, 3))
+    n_tgt, n_rows, n_pts = points.shape[0], points.shape[1], points.shape[2]
+    out = np.zeros((n_tgt, n_src, n_rows, n_pts, 3))
     max_b = 0
     for q in range(n_src):
         max_b = max(max_b, int(params[q, 1]))
-    for i in prange(n_rows):
+    for ti in prange(n_tgt * n_rows):
+        t = ti // n_rows
+        i = ti % n_rows
         nodes = np.empty((max_b, n_age + 1, 3))
         strength = np.empty((max_b, n_age + 1))
         radius = np.empty((max_b, n_age + 1))
         for q in range(n_src):
             n_blades = int(params[q, 1])
-            _rotor_nodes(params[q], gamma[q], beta[q], distortion[q], table_step, core[q], omega_ratio[q] * row_psi[i],
-                         n_age, dphi[q], nodes, strength, radius)
+            _rotor_nodes(params[q], gamma[q], beta[q], distortion[q], table_step, core[q],
+                         omega_ratio[t, q] * row_psi[i], n_age, dphi, nodes, strength, radius)
             for k in range(n_blades):
                 for j in range(n_age + 1):
                     x, y, z = nodes[k, j, 0], nodes[k, j, 1], nodes[k, j, 2]
-                    nodes[k, j, 0] = rot[q, 0, 0] * x + rot[q, 0, 1] * y + rot[q, 0, 2] * z + off[q, 0]
-                    nodes[k, j, 1] = rot[q, 1, 0] * x + rot[q, 1, 1] * y + rot[q, 1, 2] * z + off[q, 1]
-                    nodes[k, j, 2] = rot[q, 2, 0] * x + rot[q, 2, 1] * y + rot[q, 2, 2] * z + off[q, 2]
+                    nodes[k, j, 0] = rot[t, q, 0, 0] * x + rot[t, q, 0, 1] * y + rot[t, q, 0, 2] * z + off[t, q, 0]
+                    nodes[k, j, 1] = rot[t, q, 1, 0] * x + rot[t, q, 1, 1] * y + rot[t, q, 1, 2] * z + off[t, q, 1]
+                    nodes[k, j, 2] = rot[t, q, 2, 0] * x + rot[t, q, 2, 1] * y + rot[t, q, 2, 2] * z + off[t, q, 2]
+            g_sign = sign[t, q]
             for m in range(n_pts):
-                px, py, pz = points[i, m, 0], points[i, m, 1], points[i, m, 2]
+                px, py, pz = points[t, i, m, 0], points[t, i, m, 1], points[t, i, m, 2]
                 vx = vy = vz = 0.0
                 for k in range(n_blades):
                     r1x, r1y, r1z = px - nodes[k, 0, 0], py - nodes[k, 0, 1], pz - nodes[k, 0, 2]
@@ -305,7 +316,7 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
                         n2 = math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z)
                         dx, dy, dz = wake._segment(
                             r1x, r1y, r1z, n1, r2x, r2y, r2z, n2,
-                            sign[q] * 0.5 * (strength[k, j] + strength[k, j + 1]),
+                            g_sign * 0.5 * (strength[k, j] + strength[k, j + 1]),
                             0.5 * (radius[k, j] + radius[k, j + 1]),
                             vatistas_n,
                         )
@@ -313,31 +324,37 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
                         vx += dx
                         vy += dy
                         vz += dz
-                    if bound[q]:
-                        h1x, h1y, h1z = px - off[q, 0], py - off[q, 1], pz - off[q, 2]
+                    if bound[t, q]:
+                        h1x, h1y, h1z = px - off[t, q, 0], py - off[t, q, 1], pz - off[t, q, 2]
                         t1x, t1y, t1z = px - nodes[k, 0, 0], py - nodes[k, 0, 1], pz - nodes[k, 0, 2]
                         dx, dy, dz = wake._segment(
                             h1x, h1y, h1z, math.sqrt(h1x * h1x + h1y * h1y + h1z * h1z),
                             t1x, t1y, t1z, math.sqrt(t1x * t1x + t1y * t1y + t1z * t1z),
-                            sign[q] * strength[k, 0], core[q, 0], vatistas_n,
+                            g_sign * strength[k, 0], core[q, 0], vatistas_n,
                         )
                         vx += dx
                         vy += dy
                         vz += dz
-                out[q, i, m, 0], out[q, i, m, 1], out[q, i, m, 2] = vx, vy, vz
+                out[t, q, i, m, 0], out[t, q, i, m, 1], out[t, q, i, m, 2] = vx, vy, vz
     return out
 
 
-def _induced(rotors, sources: _Sources, target: int, points, row_psi, n_age: int, dphi: float, table_step: float,
-             vatistas_n: float, bound: np.ndarray) -> np.ndarray:
-    """Per-source induced velocity (n_src, n_rows, n_pts, 3) in the target's H' (m/s)."""
-    rot, off, sign = _transforms(rotors, target)
-    omega_t = rotors[target].state.omega_rad_s
-    ratio = np.array([r.state.omega_rad_s / omega_t for r in rotors])
+def _induced(rotors, sources: _Sources, targets, points, row_psi, n_age: int, dphi: float, table_step: float,
+             vatistas_n: float, own_bound: bool) -> np.ndarray:
+    """Per-source induced velocity (n_tgt, n_src, n_rows, n_pts, 3) in each target's H' (m/s)
+    at ``points`` (n_tgt, n_rows, n_pts, 3); ``targets``: rotor indices; bound vortices of the
+    other rotors always, of the target itself when ``own_bound``."""
+    maps = [_transforms(rotors, t) for t in targets]
+    rot = np.ascontiguousarray([m[0] for m in maps])
+    off = np.ascontiguousarray([m[1] for m in maps])
+    sign = np.ascontiguousarray([m[2] for m in maps])
+    omega = np.array([r.state.omega_rad_s for r in rotors])
+    ratio = np.ascontiguousarray([omega / omega[t] for t in targets])
+    bound = np.ascontiguousarray([[own_bound or q != t for q in range(len(rotors))] for t in targets], dtype=np.bool_)
     return _induced_kernel(np.ascontiguousarray(points, dtype=float), np.ascontiguousarray(row_psi, dtype=float), ratio,
                            sources.params, sources.gamma, sources.beta, sources.distortion, float(table_step),
-                           np.ascontiguousarray(sources.core), rot, off, sign, np.asarray(bound, dtype=np.bool_),
-                           int(n_age), np.full(len(rotors), float(dphi)), float(vatistas_n))
+                           np.ascontiguousarray(sources.core), rot, off, sign, bound, int(n_age), float(dphi),
+                           float(vatistas_n))
 
 
 def _node_table(rotor: RotorPlacement, beddoes: wake.WakeModel, model: FreeWakeModel) -> np.ndarray:
@@ -364,12 +381,9 @@ def _node_velocities(rotors, beddoes, model, base, distortion) -> list[np.ndarra
     sources = _physical_sources(rotors, beddoes, model, distortion)
     psi = np.arange(model.steps_per_rev) * model.step_rad
     free = model.n_age + 1
-    out = []
-    for q, r in enumerate(rotors):
-        v = _induced(rotors, sources, q, base[q, :, :free] + distortion[q, :, :free], psi, model.n_age + model.n_far,
-                     model.step_rad, model.step_rad, model.vatistas_n, np.ones(len(rotors), dtype=bool)).sum(axis=0)
-        out.append(v + r.free_stream_hp_mps)
-    return out
+    v = _induced(rotors, sources, range(len(rotors)), base[:, :, :free] + distortion[:, :, :free], psi,
+                 model.n_age + model.n_far, model.step_rad, model.step_rad, model.vatistas_n, True).sum(axis=1)
+    return [v[q] + r.free_stream_hp_mps for q, r in enumerate(rotors)]
 
 
 def _march(x_old: np.ndarray, velocity: np.ndarray, step_time_s: float) -> np.ndarray:
@@ -381,8 +395,9 @@ def _march(x_old: np.ndarray, velocity: np.ndarray, step_time_s: float) -> np.nd
     v_avg = v_avg[:, 1:] + v_avg[:, :-1]
     for j in range(1, free):
         x[:, j] = np.roll(x[:, j - 1], 1, axis=0) + step_time_s * v_avg[:, j - 1]
+    v_far = velocity[:, free - 1].mean(axis=0)
     for m in range(1, x.shape[1] - free + 1):
-        x[:, free - 1 + m] = np.roll(x[:, free - 1] + m * step_time_s * velocity[:, free - 1], m, axis=0)
+        x[:, free - 1 + m] = np.roll(x[:, free - 1], m, axis=0) + m * step_time_s * v_far
     return x
 
 
@@ -447,9 +462,8 @@ def disk_induced_velocity(solution: FreeWakeSolution, target: str, psi_rad, r_m,
     psi = np.ascontiguousarray(psi_rad, dtype=float)
     points = wake.blade_points(psi, r_m, beta_rad)
     sources = _lifting_line_sources(solution.rotors, solution.beddoes, solution.distortion_m)
-    others = np.arange(len(solution.rotors)) != t
-    return _induced(solution.rotors, sources, t, points, psi, solution.beddoes.n_age, solution.beddoes.dphi_rad,
-                    solution.model.step_rad, solution.beddoes.vatistas_n, others)
+    return _induced(solution.rotors, sources, [t], points[None], psi, solution.beddoes.n_age, solution.beddoes.dphi_rad,
+                    solution.model.step_rad, solution.beddoes.vatistas_n, False)[0]
 
 
 def snapshot_nodes(solution: FreeWakeSolution, rotor: str, psi_blade_rad: float) -> np.ndarray:
