@@ -137,6 +137,14 @@ class RotorPlacement:
     hub_position_m: np.ndarray
     r_gh: np.ndarray
 
+    def __post_init__(self):
+        hub = np.asarray(self.hub_position_m, dtype=float)
+        r_gh = np.asarray(self.r_gh, dtype=float)
+        if hub.shape != (3,) or not np.isfinite(hub).all():
+            raise ValueError(f"rotor '{self.name}': hub_position_m: expected 3 finite numbers, got {self.hub_position_m!r}")
+        if r_gh.shape != (3, 3) or not np.allclose(r_gh @ r_gh.T, np.eye(3), atol=1e-6):
+            raise ValueError(f"rotor '{self.name}': r_gh: expected a 3 x 3 rotation matrix, got {self.r_gh!r}")
+
     @property
     def to_common(self) -> np.ndarray:
         """Rotation H' → G: R_GH M_s (M_s = diag(1, s, 1))."""
