@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from nps import bet, bvi, wake
+from nps import bet, bvi, freewake, interaction, wake
 from nps.rotor import Airfoil, OperatingPoint, RotorGeometry
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "hart_ii"
@@ -103,16 +103,34 @@ def window_metrics(psi_deg, values, lo, hi):
 def piv_miss_distances(state: wake.WakeState, model: wake.WakeModel) -> list[tuple]:
     """For each PIV vortex: (side, ψ, y, measured x, z, predicted x, z, miss distance in the
     cut plane y = y_meas), matching the nearest predicted crossing of any blade's vortex."""
+    return _miss_distances(lambda psi: wake.wake_snapshot(state, model, psi).nodes_m)
+
+
+def _miss_distances(nodes_at) -> list[tuple]:
+    """PIV comparison for a wake given as blade-0 azimuth (rad) → nodes (B, N, 3) in H' (m)."""
     out = []
     for side, name in (("advancing", "dnw_adv_bl53.tec"), ("retreating", "dnw_ret_bl53.tec")):
         data = read_piv(name)
         for psi_deg in np.unique(data[:, 0]):
-            snap = wake.wake_snapshot(state, model, np.radians(psi_deg))
+            nodes = nodes_at(np.radians(psi_deg))
             for p, x, y, z in data[data[:, 0] == psi_deg]:
-                cross = wake.filament_plane_crossings(snap.nodes_m, 1, y)
+                cross = wake.filament_plane_crossings(nodes, 1, y)
                 d = np.hypot(cross[:, 0] - x, cross[:, 2] - z)
                 k = int(np.argmin(d))
                 out.append((side, psi_deg, y, x, z, cross[k, 0], cross[k, 2], float(d[k])))
+    return out
+
+
+WINDOWS_DEG = ((30, 80), (280, 330))
+
+
+def window_comparison(psi_deg, cn) -> list[tuple]:
+    """Per BVI window (advancing, retreating): (lo, hi, lag deg, ρ, model p2p, measured p2p)."""
+    pm, cm = measured_cn()
+    out = []
+    for lo, hi in WINDOWS_DEG:
+        lag, rho = window_lag(psi_deg, cn, pm, cm, lo, hi)
+        out.append((lo, hi, lag, rho, window_metrics(psi_deg, cn, lo, hi)[1], window_metrics(pm, cm, lo, hi)[1]))
     return out
 
 
@@ -131,3 +149,40 @@ def window_lag(psi_model_deg, model, psi_meas_deg, meas, lo, hi, max_lag_deg=15.
         if rho > best[1]:
             best = (float(lag), rho)
     return best
+
+
+@dataclass(frozen=True)
+class HartFreeResult:
+    trim: bet.RotorTrim
+    result: interaction.AircraftBVI
+    psi_deg: np.ndarray
+    cn_bvi: np.ndarray
+
+
+def run_free(n_psi: int = 360, n_r: int = 50, free_model: freewake.FreeWakeModel = freewake.FreeWakeModel(),
+             wake_model: wake.WakeModel | None = None) -> HartFreeResult:
+    """The baseline with the free wake: :func:`nps.interaction.aircraft_bvi_loads` on a one-rotor
+    aircraft (hub at the origin, hub frame = G axes)."""
+    import pandas as pd
+
+    trim = bet.trim_rotor(GEOMETRY, OPERATING_POINT, bet.DiskGrid(n_psi, n_r))
+    row = dict(TRIM_ROW, rotor="hart_ii", ct=trim.totals.ct, thrust_N=OPERATING_POINT.thrust_N,
+               roll_moment_Nm=OPERATING_POINT.roll_moment_Nm, pitch_moment_Nm=OPERATING_POINT.pitch_moment_Nm,
+               hub_x_m=0.0, hub_y_m=0.0, hub_z_m=0.0, vel_x_mps=0.0, vel_y_mps=0.0, vel_z_mps=0.0,
+               **{f"r_gh_{i}{j}": float(i == j) for i in range(3) for j in range(3)})
+    config = dict(name="hart_ii", n_blades=4, radius_m=RADIUS_M, chord_m=CHORD, root_cutout_m=0.44, twist_deg=-8.0,
+                  thickness_ratio=0.12, lock_number=8.0, hinge_offset_m=0.29, rotation="ccw",
+                  airfoil=dict(lift_slope_per_rad=6.0, alpha0_deg=-1.2))
+    result = interaction.aircraft_bvi_loads(pd.DataFrame([row]), {"hart_ii": config}, {"hart_ii": trim.disk},
+                                            {"hart_ii": trim.summary()}, wake_model or wake.WakeModel(steps_per_rev=n_psi),
+                                            free_model)
+    disk = result.results["hart_ii"].disk
+    grid = bvi.disk_grid(disk)
+    j = int(np.argmin(np.abs(grid.r_m / RADIUS_M - R_OVER_R)))
+    fz = disk["fz_N_per_m"].to_numpy().reshape(grid.shape)[:, j]
+    return HartFreeResult(trim, result, np.degrees(grid.psi_rad), cn_m2(fz))
+
+
+def piv_miss_distances_free(solution: freewake.FreeWakeSolution) -> list[tuple]:
+    """As :func:`piv_miss_distances` for the relaxed free wake (its nodes on the relaxation grid)."""
+    return _miss_distances(lambda psi: freewake.snapshot_nodes(solution, solution.rotors[0].name, psi))
