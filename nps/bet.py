@@ -319,10 +319,23 @@ def check_geometry(geometry: RotorGeometry) -> None:
         ("airfoil.cl_max", g.airfoil.cl_max > 0.0, "a positive number"),
         ("airfoil.mach_cap", 0.0 < g.airfoil.mach_cap < 1.0, "0 < mach_cap < 1"),
         ("airfoil.cd0", g.airfoil.cd0 >= 0.0, "a non-negative number"),
+        ("higher_harmonic_pitch", all(_harmonic_ok(h) for h in g.higher_harmonic_pitch),
+         "(n >= 1, finite amplitude and phase in rad) entries"),
+        ("elastic_twist_harmonics", all(_harmonic_ok(h, 0) for h in g.elastic_twist_harmonics),
+         "(n >= 0, finite cos and sin coefficients in rad) entries"),
     ]
     for name, ok, expected in checks:
         if not ok:
             raise ValueError(f"rotor '{g.name}': {name}: expected {expected}, got {getattr(g, name.split('.')[0])!r}")
+
+
+def _harmonic_ok(entry, lowest: int = 1) -> bool:
+    """A prescribed-motion entry (n, a, b): integer n >= ``lowest``, finite a and b."""
+    try:
+        n, a, b = entry
+    except (TypeError, ValueError):
+        return False
+    return float(n) == int(n) and int(n) >= lowest and math.isfinite(a) and math.isfinite(b)
 
 
 def check_operating_point(op: OperatingPoint, name: str) -> None:
@@ -368,6 +381,7 @@ class _Disk:
         self.ur = self.tip_speed * (op.mu_x * self.cos + self.mu_yp * self.sin)
         self.rbar = self.r[None, :] / R
         self.twist = geometry.twist_at(self.r)[None, :]
+        self.prescribed_pitch = geometry.prescribed_pitch(psi, self.r)
         self.flap_arm = np.maximum(self.r - geometry.hinge_offset_m, 0.0)
         self.nu2 = flap_frequency_sq(geometry)
         self.i_omega2 = flap_inertia(geometry, op.density_kg_m3) * omega**2
@@ -388,6 +402,8 @@ class _Disk:
         i = self.inflow(lambda0)
         omega = self.op.omega_rad_s
         theta = c.theta0_rad + c.theta1c_rad * self.cos + c.theta1s_rad * self.sin + self.twist
+        if self.prescribed_pitch is not None:
+            theta = theta + self.prescribed_pitch
         lam = self.op.mu_z + lambda0 * (1.0 + self.rbar * (i.kx * self.cos + i.ky * self.sin))
         beta = beta0 + beta1c * self.cos + beta1s * self.sin
         beta_dot = omega * (beta1s * self.cos - beta1c * self.sin)

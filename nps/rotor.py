@@ -7,6 +7,7 @@ trim artifact (``trim.parquet``, one row per rotor). Frames and signs: docs/conv
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Mapping
 
@@ -38,6 +39,12 @@ class RotorGeometry:
     θtw(r) = twist_rad · (r/R − 0.75) so that θ0 is the pitch at 75 % radius.
     ``thickness_ratio`` t/c of the section; ``hinge_offset_m`` e of the flap hinge;
     ``lock_number`` γ = ρ a c R⁴ / I_β (at the reference density of the configuration).
+
+    Optional prescribed blade motion (e.g. a wind-tunnel test run as measured; empty = none):
+    ``higher_harmonic_pitch`` ((n, θ_n rad, ψ_n rad), ...) adds Σ θ_n cos(nψ − ψ_n) to the pitch
+    of the whole blade (higher-harmonic control); ``elastic_twist_harmonics`` ((n, c_n rad,
+    s_n rad), ...) adds (r/R) Σ (c_n cos nψ + s_n sin nψ), an elastic torsion given at the tip
+    and linear along the span (n = 0 is the mean).
     """
 
     name: str
@@ -51,6 +58,8 @@ class RotorGeometry:
     hinge_offset_m: float = 0.0
     rotation_sign: int = 1
     airfoil: Airfoil = field(default_factory=Airfoil)
+    higher_harmonic_pitch: tuple[tuple[int, float, float], ...] = ()
+    elastic_twist_harmonics: tuple[tuple[int, float, float], ...] = ()
 
     @property
     def solidity(self) -> float:
@@ -61,9 +70,25 @@ class RotorGeometry:
         """θtw(r) in rad."""
         return self.twist_rad * (np.asarray(r_m, dtype=float) / self.radius_m - 0.75)
 
+    def prescribed_pitch(self, psi_rad, r_m) -> np.ndarray | None:
+        """Prescribed pitch (rad), (n_psi, n_r), of the higher-harmonic and elastic-twist
+        inputs at azimuths ``psi_rad`` (n_psi,) and stations ``r_m`` (n_r,); None without them."""
+        if not (self.higher_harmonic_pitch or self.elastic_twist_harmonics):
+            return None
+        psi = np.asarray(psi_rad, dtype=float)[:, None]
+        rbar = np.asarray(r_m, dtype=float)[None, :] / self.radius_m
+        hhc = sum((amp * np.cos(n * psi - phase) for n, amp, phase in self.higher_harmonic_pitch), np.zeros_like(psi))
+        elastic = sum((c * np.cos(n * psi) + s * np.sin(n * psi) for n, c, s in self.elastic_twist_harmonics),
+                      np.zeros_like(psi))
+        return hhc + rbar * elastic
+
     @classmethod
     def from_config(cls, rotor: Mapping) -> "RotorGeometry":
-        """Build from one validated ``rotors[]`` entry of an aircraft configuration."""
+        """Build from one validated ``rotors[]`` entry of an aircraft configuration.
+
+        Optional prescribed motion entries: ``higher_harmonic_pitch: [{n, amplitude_deg,
+        phase_deg}, ...]``, ``elastic_twist_harmonics: [{n, cos_deg, sin_deg}, ...]``.
+        """
         foil = rotor.get("airfoil", {})
         airfoil = Airfoil(
             lift_slope_per_rad=float(foil.get("lift_slope_per_rad", Airfoil.lift_slope_per_rad)),
@@ -86,6 +111,12 @@ class RotorGeometry:
             hinge_offset_m=float(rotor.get("hinge_offset_m", 0.0)),
             rotation_sign=1 if rotor["rotation"] == "ccw" else -1,
             airfoil=airfoil,
+            higher_harmonic_pitch=tuple(
+                (int(h["n"]), math.radians(float(h["amplitude_deg"])), math.radians(float(h["phase_deg"])))
+                for h in rotor.get("higher_harmonic_pitch", ())),
+            elastic_twist_harmonics=tuple(
+                (int(h["n"]), math.radians(float(h["cos_deg"])), math.radians(float(h["sin_deg"])))
+                for h in rotor.get("elastic_twist_harmonics", ())),
         )
 
 
