@@ -477,14 +477,25 @@ def disk_induced_velocity(solution: FreeWakeSolution, target: str, psi_rad, r_m,
 def snapshot_nodes(solution: FreeWakeSolution, rotor: str, psi_blade_rad: float) -> np.ndarray:
     """Nodes (B, J+1, 3) of the rotor's tip vortices in its own H' (m) when its blade 0 is at
     ``psi_blade_rad``, on the relaxation age grid (for plots and PIV comparisons)."""
+    return _snapshot(solution, rotor, psi_blade_rad, solution.model.n_age, solution.model.step_rad)[0]
+
+
+def wake_snapshot(solution: FreeWakeSolution, rotor: str, psi_blade_rad: float) -> wake.WakeSnapshot:
+    """The free wake as a :class:`nps.wake.WakeSnapshot` on the Beddoes model's age grid (the
+    ``wake/{rotor}.parquet`` artifact via ``nps.wake.wake_table(..., snapshot=...)``); node
+    strength Γ_v and the physical core radius of the node kinematics."""
+    n_age, step = solution.beddoes.n_age, solution.beddoes.dphi_rad
+    nodes, strength, radius = _snapshot(solution, rotor, psi_blade_rad, n_age, step)
+    return wake.WakeSnapshot(float(psi_blade_rad), nodes, np.arange(n_age + 1) * step, strength, radius)
+
+
+def _snapshot(solution, rotor, psi_blade_rad, n_age, step):
     q = solution.index(rotor)
-    r = solution.rotors[q]
     sources = _physical_sources(solution.rotors, solution.beddoes, solution.model, solution.distortion_m)
-    n_b = r.state.n_blades
-    nodes = np.empty((n_b, solution.model.n_age + 1, 3))
-    strength = np.empty((n_b, solution.model.n_age + 1))
-    radius = np.empty((n_b, solution.model.n_age + 1))
+    n_b = solution.rotors[q].state.n_blades
+    nodes = np.empty((n_b, n_age + 1, 3))
+    strength = np.empty((n_b, n_age + 1))
+    radius = np.empty((n_b, n_age + 1))
     _rotor_nodes(sources.params[q], sources.gamma[q], sources.beta[q], sources.distortion[q], solution.model.step_rad,
-                 sources.core[q], float(psi_blade_rad), solution.model.n_age, solution.model.step_rad, nodes, strength,
-                 radius)
-    return nodes
+                 sources.core[q], float(psi_blade_rad), n_age, step, nodes, strength, radius)
+    return nodes, strength, radius

@@ -92,3 +92,20 @@ def test_bad_placement_is_named(rotor):
         freewake.RotorPlacement("x", placement.state, np.array([0.0, np.nan, 0.0]), np.eye(3))
     with pytest.raises(ValueError, match="rotor 'x': r_gh"):
         freewake.RotorPlacement("x", placement.state, np.zeros(3), 2.0 * np.eye(3))
+
+
+def test_wake_table_of_the_free_wake(rotor):
+    """The free wake writes the wake artifact with the Beddoes table's columns and node count;
+    with a zero distortion the positions equal the Beddoes table's."""
+    from nps.rotor import RotorMotion
+
+    _, placement = rotor
+    motion = RotorMotion(np.zeros(3), np.array([-32.9, 0.0, 0.0]), np.eye(3), OMEGA, 1, 4)
+    psi = np.radians([0.0, 5.0])
+    model = freewake.FreeWakeModel()
+    zero = freewake.FreeWakeSolution((placement,), BEDDOES, model,
+                                     np.zeros_like(freewake._node_table(placement, BEDDOES, model))[None], 0, np.array([]))
+    beddoes = wake.wake_table(placement.state, BEDDOES, psi, motion)
+    free = wake.wake_table(placement.state, BEDDOES, psi, motion, snapshot=lambda p: freewake.wake_snapshot(zero, "demo", p))
+    assert list(free.columns) == list(wake.WAKE_COLUMNS) and len(free) == len(beddoes)
+    assert np.array_equal(free[["x_h_m", "y_h_m", "z_h_m"]].to_numpy(), beddoes[["x_h_m", "y_h_m", "z_h_m"]].to_numpy())
