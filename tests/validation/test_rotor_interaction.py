@@ -66,8 +66,9 @@ def test_coaxial_hover_interference_power():
     isolated rotor at that C_T: the induced power of the pair over twice the isolated one,
     κ_int, lies in 1.1–1.3 — simple momentum theory gives 1.26–1.28 for the lower rotor in the
     upper's fully developed slipstream and √2 for coplanar rotors; Harrington (1951, NACA TN
-    2318) measured coaxial hover performance that corresponds to κ_int ≈ 1.16 (Leishman &
-    Ananthan 2006, J. AHS 51(1)) — and the lower rotor's mean inflow exceeds the upper's.
+    2318) measured coaxial hover performance that corresponds to κ_int ≈ 1.16 (as derived in
+    Leishman, Principles of Helicopter Aerodynamics, coaxial-rotor section) — and the lower
+    rotor's mean inflow exceeds the upper's.
     Both rotors are re-trimmed to their thrust within 0.1 %."""
     kwargs = dict(mu_x=0.0, mu_z=0.0, ct=0.004, n_psi=36, n_r=12)
     free = freewake.FreeWakeModel(revolutions=3.0, far_revolutions=2.0)
