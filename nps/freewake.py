@@ -47,7 +47,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Mapping, Sequence
 
 import numpy as np
 
@@ -108,6 +108,16 @@ class FreeWakeModel:
         bad = [name for name, ok in checks.items() if not ok]
         if bad:
             raise ValueError(f"FreeWakeModel: invalid {bad} in {self}")
+
+    @classmethod
+    def from_config(cls, block: Mapping | None) -> "FreeWakeModel":
+        """From an optional config mapping with any of the field names (defaults elsewhere);
+        unknown keys are an error naming them."""
+        block = dict(block or {})
+        unknown = sorted(set(block) - set(cls.__dataclass_fields__))
+        if unknown:
+            raise ValueError(f"FreeWakeModel: unknown field(s) {unknown}; expected some of {sorted(cls.__dataclass_fields__)}")
+        return cls(**block)
 
     @property
     def n_age(self) -> int:

@@ -109,3 +109,10 @@ def test_wake_table_of_the_free_wake(rotor):
     free = wake.wake_table(placement.state, BEDDOES, psi, motion, snapshot=lambda p: freewake.wake_snapshot(zero, "demo", p))
     assert list(free.columns) == list(wake.WAKE_COLUMNS) and len(free) == len(beddoes)
     assert np.array_equal(free[["x_h_m", "y_h_m", "z_h_m"]].to_numpy(), beddoes[["x_h_m", "y_h_m", "z_h_m"]].to_numpy())
+
+
+def test_model_from_config():
+    assert freewake.FreeWakeModel.from_config(None) == freewake.FreeWakeModel()
+    assert freewake.FreeWakeModel.from_config({"steps_per_rev": 72}).steps_per_rev == 72
+    with pytest.raises(ValueError, match="unknown field"):
+        freewake.FreeWakeModel.from_config({"steps": 72})
