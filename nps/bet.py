@@ -587,6 +587,8 @@ def trim_rotor(
 
     disk = _Disk(geometry, op, grid, tip_loss, interference)
     x0, theta0 = _initial_state(geometry, op, op.thrust_N)
+    if interference is not None:  # linear theory: the same thrust needs Δθ0 = 3/2 Δλ more collective
+        theta0 = float(np.clip(theta0 + 1.5 * np.mean(disk.extra_up) / disk.tip_speed, -0.5, 0.5))
     solver = _StateSolver(disk, x0)
     ctrl = np.array([theta0, 0.0, 0.0])  # θ0, θ1c, θ1s
 
