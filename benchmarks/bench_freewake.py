@@ -5,11 +5,14 @@ The inputs are made as the workflow makes them (``nps.trim.trim_aircraft`` for t
 ``nps.bet.trim_rotor`` per rotor on the config's n_psi × n_r disk, the config's ``wake:`` block and
 ``resolution``), then :func:`nps.interaction.aircraft_bvi_loads` is timed: wake relaxation (all
 rotors together), every rotor's disk velocity from every rotor's wake, re-trims, section loads.
-Prints the first call (including numba's cache load or compilation), then the best of 3 runs,
-the relaxation iterations and the interaction summary.
+Prints the first call (including numba's cache load or compilation), then the best of 3 runs
+(wall time and the process CPU time of that run: on the shared machine the wall time depends on
+the other users' load, the CPU time over the 2 threads bounds the idle-machine wall time), the
+relaxation iterations and the interaction summary.
 Run from the repository root: ``PYTHONPATH=. python benchmarks/bench_freewake.py [aircraft ...]``.
 """
 
+import os
 import sys
 import time
 
@@ -53,17 +56,19 @@ def main(names) -> None:
         start = time.perf_counter()
         done = interaction.aircraft_bvi_loads(*inputs)
         first = time.perf_counter() - start
-        best = min(_timed(inputs) for _ in range(3))
-        print(f"{name} seg3: free wake + BVI loads of {len(inputs[1])} rotors: first {first:.2f} s, best {best:.2f} s; "
-              f"relaxation {done.solution.iterations} iterations, last node change "
-              f"{done.solution.residual_history[-1]:.4f} R")
+        wall, cpu = min(_timed(inputs) for _ in range(3))
+        print(f"{name} seg3: free wake + BVI loads of {len(inputs[1])} rotors: first {first:.2f} s, best {wall:.2f} s "
+              f"wall ({cpu:.2f} s CPU, load average {os.getloadavg()[0]:.1f}); relaxation {done.solution.iterations} "
+              f"iterations, last node change {done.solution.residual_history[-1]:.4f} R")
         print(done.summary.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
 
 
-def _timed(inputs) -> float:
-    start = time.perf_counter()
+def _timed(inputs) -> tuple[float, float]:
+    """(wall s, CPU s of this process) of one call."""
+    cpu0, start = os.times(), time.perf_counter()
     interaction.aircraft_bvi_loads(*inputs)
-    return time.perf_counter() - start
+    cpu1 = os.times()
+    return time.perf_counter() - start, (cpu1.user - cpu0.user) + (cpu1.system - cpu0.system)
 
 
 if __name__ == "__main__":
