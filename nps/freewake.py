@@ -12,10 +12,11 @@ the initial guess, so that the first iterate gives exactly today's Beddoes resul
 
 Kinematics. In the frame moving with the aircraft every node moves with the local flow:
 
-    Ω_q (∂X/∂ψ + ∂X/∂φ) = V_∞,q + Σ_{rotors p} Σ_{blades} V_BS(X; vortex of p)
+    Ω_q (∂X/∂ψ + ∂X/∂φ) = V_∞,q + Σ_{rotors p} Σ_{blades} V_BS(X; tip and bound vortex of p)
 
 V_∞,q = Ω_q R_q (μ_x, s μ_y, −μ_z) (NPS signs, H'_q), V_BS the Biot–Savart velocity of
-straight segments with a Vatistas core (:func:`nps.wake._segment`). Rotor p's wake enters
+straight segments with a Vatistas core (:func:`nps.wake._segment`); a blade's bound vortex
+runs from the hub centre to its tip node (horseshoe with the tip vortex). Rotor p's wake enters
 rotor q's equations at the same time t = ψ_i/Ω_q, i.e. at p's azimuth Ω_p t (blade 0 of every
 rotor is at ψ = 0 at t = 0, as in :class:`nps.rotor.RotorMotion`); p's distortion is
 interpolated linearly (periodic) in ψ and linearly in φ.
@@ -34,13 +35,13 @@ marched in j (pseudo-implicit: X[i−1, j−1] is already the new value), i peri
 Predictor–corrector per iteration n (PIPC): the predictor uses velocities V⁽ⁿ⁻¹⁾ of the last
 geometry; the corrector marches again with ½(V⁽ⁿ⁻¹⁾ + V(X̃)) of the last and the predicted
 geometry. Stabilising scheme: under-relaxation X⁽ⁿ⁾ = X⁽ⁿ⁻¹⁾ + ω (X_c − X⁽ⁿ⁻¹⁾)
-(``relaxation`` ω) and the physical core growth (the core smooths close vortex–vortex
-encounters). Converged when max |X⁽ⁿ⁾ − X⁽ⁿ⁻¹⁾| < ``tolerance_radius_fraction`` · R for
+(``relaxation`` ω) and a core floor of the node kinematics (the core smooths close
+vortex–vortex encounters that the straight segments of the coarse grid cannot resolve). Converged when max |X⁽ⁿ⁾ − X⁽ⁿ⁻¹⁾| < ``tolerance_radius_fraction`` · R for
 every rotor; non-finite nodes or no convergence raise :class:`FreeWakeError`.
 
-Cores. Node kinematics use the physical core, r_c² = r_c0² + 4 α δ ν φ/Ω, δ = 1 + a₁ Γ/ν
-(Squire / Bhagwat–Leishman), r_c0 from HART-II PIV; blade loads keep the lifting-line core of
-:class:`nps.wake.WakeModel` (c/2, chordwise averaging; docs).
+Cores. Node kinematics use r_c² = r_c0² + 4 α δ ν φ/Ω, δ = 1 + a₁ Γ/ν (Squire /
+Bhagwat–Leishman) with r_c0 = max(HART-II PIV core, floor); blade loads keep the lifting-line
+core of :class:`nps.wake.WakeModel` (c/2, chordwise averaging; docs).
 """
 
 from __future__ import annotations
@@ -72,8 +73,8 @@ class FreeWakeModel:
     ``steps_per_rev`` N: relaxation grid Δψ = Δφ = 2π/N; ``revolutions``: free (relaxed) wake
     age; ``far_revolutions``: rigid far wake after it; ``core_radius_chords``: initial physical
     core r_c0/c; ``core_floor_chords``: lower bound of r_c0/c in the node kinematics (the
-    resolution of the straight-segment wake on the relaxation grid; docs); ``core_growth`` with ``growth_a1``
-    and ``viscosity_m2_s``; ``relaxation`` ω in (0, 1]; ``tolerance_radius_fraction``:
+    resolution of the straight-segment wake on the relaxation grid; docs); ``core_growth``
+    with ``growth_a1`` and ``viscosity_m2_s``; ``relaxation`` ω in (0, 1]; ``tolerance_radius_fraction``:
     convergence when the largest node change between two iterations is below this × R;
     ``max_iterations``; ``vatistas_n``.
     """

@@ -17,7 +17,6 @@ direction and writes the figure of all three against measurement.
 import os
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 import hart_ii_case as h
