@@ -1,6 +1,6 @@
 """Configuration files: loading, JSON-schema validation and cross-reference checks.
 
-Schemas live in ``workflow/schemas/`` (config, aircraft, mission). Every problem is reported
+Schemas live in ``nps/schemas/`` (config, aircraft, mission) with the defaults of optional fields. Every problem is reported
 before any computation as a :class:`ConfigError` whose lines read
 ``<file>: <field path>: <what was expected>``.
 """
@@ -15,8 +15,7 @@ from typing import Any, Iterator
 import jsonschema
 import yaml
 
-REPO_ROOT = Path(__file__).resolve().parents[1]
-SCHEMA_DIR = REPO_ROOT / "workflow" / "schemas"
+SCHEMA_DIR = Path(__file__).resolve().parent / "schemas"
 
 
 class ConfigError(ValueError):
@@ -76,13 +75,26 @@ def _raise(file: str | Path, problems: list[tuple[str, str]]) -> None:
 
 
 def load_schema(name: str) -> dict:
-    """The schema ``workflow/schemas/<name>.schema.yaml``."""
+    """The schema ``nps/schemas/<name>.schema.yaml``."""
     with open(SCHEMA_DIR / f"{name}.schema.yaml") as handle:
         return yaml.safe_load(handle)
 
 
+def schema_default(schema_name: str, field: str) -> Any:
+    """The ``default`` the schema declares for a dotted field path, e.g. ``("config", "resolution.n_psi")``.
+
+    The one source of defaults: the command-line options and the workflow read them from here.
+    """
+    node = load_schema(schema_name)
+    for part in field.split("."):
+        node = node["properties"][part]
+    if "default" not in node:
+        raise KeyError(f"{schema_name} schema: field '{field}' declares no default")
+    return node["default"]
+
+
 def validate(data: Any, schema_name: str, file: str | Path) -> dict:
-    """Validate ``data`` against a schema; fill schema defaults; raise :class:`ConfigError`."""
+    """Validate ``data`` against a schema; raise :class:`ConfigError` listing every problem."""
     if not isinstance(data, dict):
         _raise(file, [("<top level>", f"expected a mapping, got {type(data).__name__}")])
     problems = list(_non_finite(data, []))
@@ -176,6 +188,41 @@ class Campaign:
 
     def rotor_names(self, aircraft: str) -> list[str]:
         return [r["name"] for r in self.aircraft[aircraft]["rotors"]]
+
+    # Optional segment lists of the config default to every campaign segment (schema descriptions);
+    # these methods are the one place that applies those defaults.
+    def _listed(self, listed: list[str] | None) -> list[str]:
+        return [s for s in self.segments if listed is None or s in listed]
+
+    def observer_sets(self, segment: str) -> list[str]:
+        """Observer sets used in ``segment`` (``observer_sets.<name>.segments``, default all)."""
+        return [name for name, spec in self.config["observer_sets"].items() if segment in self._listed(spec.get("segments"))]
+
+    def bvi_segments(self) -> list[str]:
+        """Segments with the wake and BVI loads (``models.bvi_segments``, default all; none when ``models.bvi`` is off)."""
+        models = self.config["models"]
+        return self._listed(models.get("bvi_segments")) if models["bvi"] else []
+
+    def hsi_segments(self) -> list[str]:
+        """Segments with the HSI post-processing (``models.hsi_segments``, default all; none when ``models.hsi`` is off)."""
+        models = self.config["models"]
+        return self._listed(models.get("hsi_segments")) if models["hsi"] else []
+
+    def variants(self, segment: str) -> list[str]:
+        """Load variants radiated in ``segment``: the trimmed loads ("base") and/or the BVI loads ("bvi").
+
+        Outside the BVI segments only "base"; in a BVI segment "bvi", preceded by "base" where the
+        comparison without BVI is asked for (``models.without_bvi_segments``, default every BVI segment).
+        """
+        bvi = self.bvi_segments()
+        if segment not in bvi:
+            return ["base"]
+        without = self.config["models"].get("without_bvi_segments")
+        return ["base", "bvi"] if without is None or segment in without else ["bvi"]
+
+    def figure_segments(self, kind: str) -> list[str]:
+        """Campaign segments listed for a figure family (``figures.<kind>_segments``)."""
+        return self._listed(self.config["figures"][f"{kind}_segments"])
 
 
 def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", root: str | Path = ".") -> Campaign:

@@ -44,6 +44,28 @@ INDUCED_POWER_FACTOR = 1.15
 TRIM_TOLERANCE = 1e-12  # residual, as a fraction of the weight (forces) or weight x radius (moments)
 
 
+# The trim artifact (``trim.parquet``): one row per rotor, these columns (docs/conventions.md).
+TRIM_COLUMNS = (
+    "rotor", "role", "rotation_sign", "n_blades", "radius_m", "omega_rad_s", "thrust_N", "roll_moment_Nm",
+    "pitch_moment_Nm", "torque_Nm", "power_W", "mu_x", "mu_y", "mu_z", "lambda_i", "ct", "tip_mach",
+    "hub_x_m", "hub_y_m", "hub_z_m", "vel_x_mps", "vel_y_mps", "vel_z_mps",
+    *(f"r_gh_{i}{j}" for i in range(3) for j in range(3)),
+    "density_kg_m3", "speed_of_sound_mps", "pitch_rad", "roll_rad", "flight_path_rad", "trim_iterations",
+)
+
+
+def trim_row(trim: pd.DataFrame, rotor: str, what: str = "trim.parquet") -> dict:
+    """The row of ``rotor`` in a trim table, as a dict (the one accessor every stage uses).
+
+    Raises ValueError naming ``what`` when the rotor has not exactly one row. (Stages read trim
+    artifacts with ``read_table(path, required=TRIM_COLUMNS)``, which names missing columns.)
+    """
+    rows = trim[trim["rotor"] == rotor]
+    if len(rows) != 1:
+        raise ValueError(f"{what}: expected one row for rotor '{rotor}', found {len(rows)}; rotors: {list(trim['rotor'])}")
+    return rows.iloc[0].to_dict()
+
+
 class AircraftTrimError(RuntimeError):
     """The aircraft force and moment balance did not converge."""
 

@@ -178,18 +178,19 @@ def test_cli_writes_disk_summary_and_history(tmp_path, repo_root):
 
     from nps.__main__ import main
     from nps.io import read_table, write_table
+    from tests.trim_tables import complete_trim
 
-    trim = pd.DataFrame({"rotor": ["main"], "omega_rad_s": [28.0], "mu_x": [0.2], "mu_y": [0.0], "mu_z": [0.02],
+    trim = complete_trim(pd.DataFrame({"rotor": ["main"], "omega_rad_s": [28.0], "mu_x": [0.2], "mu_y": [0.0], "mu_z": [0.02],
                          "density_kg_m3": [1.225], "speed_of_sound_mps": [340.3], "thrust_N": [WEIGHT_N],
-                         "roll_moment_Nm": [0.0], "pitch_moment_Nm": [0.0]})
+                         "roll_moment_Nm": [0.0], "pitch_moment_Nm": [0.0]}))
     write_table(trim, tmp_path / "trim.parquet", stage="test")
     out = tmp_path / "loads" / "main.parquet"
     argv = ["loads", "--aircraft", str(repo_root / "config/aircraft/helicopter.yaml"), "--rotor", "main",
-            "--trim", str(tmp_path / "trim.parquet"), "--n-psi", "36", "--n-r", "10", "--out", str(out)]
+            "--trim", str(tmp_path / "trim.parquet"), "--n-psi", "36", "--n-r", "10", "--out-dir", str(out.parent)]
     assert main(argv) == 0
     assert tuple(read_table(out).columns) == DISK_COLUMNS
     summary = read_table(tmp_path / "loads" / "main_summary.parquet", required=("quantity", "value", "unit"))
     for q in ("theta0_rad", "beta1s_rad", "lambda0", "kx", "thrust_N", "power_W", "ct", "trim_iterations", "mean_cl"):
         assert q in set(summary["quantity"])
     assert len(read_table(tmp_path / "loads" / "main_history.parquet")) >= 2
-    assert main(argv[:4] + ["nope"] + argv[5:]) == 1
+    assert main(argv[:4] + ["nope"] + argv[5:]) == 2
