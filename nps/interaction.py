@@ -35,6 +35,7 @@ import pandas as pd
 
 from nps import bet, bvi, freewake, wake
 from nps.rotor import OperatingPoint, RotorGeometry
+from nps.trim import trim_row
 
 TRIM_TOLERANCE = 1e-3  # relative thrust tolerance of the rotor trim (nps.bet.trim_rotor default)
 SUMMARY_COLUMNS = (
@@ -60,7 +61,7 @@ def placements(trim: pd.DataFrame, disks: Mapping[str, pd.DataFrame],
     """Wake state and placement of every rotor in ``disks`` from the artifacts."""
     out = []
     for name, disk in disks.items():
-        row = bvi.select_trim_row(trim, name)
+        row = trim_row(trim, name)
         state = bvi.wake_state(disk, row, bvi.summary_value(summaries[name], "ct", f"{name} loads summary"))
         hub = np.array([row["hub_x_m"], row["hub_y_m"], row["hub_z_m"]], dtype=float)
         r_gh = np.array([[row[f"r_gh_{i}{j}"] for j in range(3)] for i in range(3)], dtype=float)
@@ -103,7 +104,7 @@ def aircraft_bvi_loads(
         name = rotor.name
         disk = disks[name]
         geometry = RotorGeometry.from_config(rotor_configs[name])
-        row = bvi.select_trim_row(trim, name)
+        row = trim_row(trim, name)
         grid = bvi.disk_grid(disk, f"{name} loads")
         beta = disk["beta_rad"].to_numpy(dtype=float).reshape(grid.shape)
         v = freewake.disk_induced_velocity(solution, name, grid.psi_rad, grid.r_m, beta)
