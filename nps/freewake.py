@@ -83,7 +83,7 @@ class FreeWakeModel:
     revolutions: float = 1.5
     far_revolutions: float = 1.0
     core_radius_chords: float = HART_II_CORE_RADIUS_CHORDS
-    core_floor_chords: float = 0.5
+    core_floor_chords: float = 1.0
     core_growth: bool = True
     growth_a1: float = BHAGWAT_LEISHMAN_A1
     viscosity_m2_s: float = wake.AIR_KINEMATIC_VISCOSITY_M2_S
