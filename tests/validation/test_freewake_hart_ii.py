@@ -3,14 +3,14 @@ and the PIV tip-vortex positions (tests/data/hart_ii). Case: tests/validation/ha
 360 × 50 disk, 1° load segments, 10° relaxation grid (``FreeWakeModel`` defaults).
 
 Measured at the time of writing (Beddoes wake in brackets, docs/models/wake_bvi.md):
-- advancing window 30°–80°: high-passed peak-to-peak 0.0506 vs measured 0.0217 (×2.33 [×2.1]),
-  best-correlation lag +8.9° (ρ = 0.87) [−9.0°];
-- retreating window 280°–330°: 0.0420 vs 0.0354 (×1.19 [×1.09]), lag −4.1° (ρ = 0.73) [+7.1°];
-- PIV miss distance mean 0.156 m [0.148 m], vortices 0.066 m too low on average [0.094 m];
-- halving the relaxation step (10° → 5°): peak |ΔU_P| 5.19 → 5.07 m/s (2.2 %).
-The issue's targets (miss < 0.05 m, amplitudes within 30 %, phase within 5°) are met only for
-the retreating-side amplitude and phase; the tests assert the measured state with margins and
-that the free wake lifts the vortices toward the measured positions.
+- advancing window 30°–80°: high-passed peak-to-peak 0.0503 vs measured 0.0217 (×2.31 [×2.1]),
+  best-correlation lag −0.8° (ρ = 0.87) [−9.0°];
+- retreating window 280°–330°: 0.0416 vs 0.0354 (×1.17 [×1.09]), lag −3.9° (ρ = 0.76) [+7.1°];
+- PIV miss distance mean 0.155 m [0.148 m], vortices 0.063 m too low on average [0.094 m];
+- halving the relaxation step (10° → 5°): peak |ΔU_P| 5.118 → 5.143 m/s (0.5 %).
+Issue targets: phase within 5° met in both windows, retreating amplitude within 30 % met;
+advancing amplitude (×2.31) and PIV miss < 0.05 m not met. The tests assert the measured state
+with margins and that the free wake lifts the vortices toward the measured positions.
 """
 
 import os

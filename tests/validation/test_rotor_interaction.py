@@ -5,13 +5,13 @@ Synthetic aircraft of identical rotors (tests/validation/multirotor_case.py), 72
 - (a) two rotors 25 R apart: largest F_z change against the isolated rotor 4.6e-4 of its peak
   (the far field of a lifting rotor's wake decays as 1/d²: 3.7e-5 at 100 R); 1000 R: < 1e-6;
 - (b) side-by-side pair with opposite rotation: mirrored wakes and loads exactly (difference 0);
-- (c) coaxial hover, spacing 0.16 R: κ_int = 1.28, lower rotor's mean inflow 13.9 m/s > upper's
-  11.7 m/s (0.125 R: 1.32; 0.25 R: 1.18);
+- (c) coaxial hover, spacing 0.16 R: κ_int = 1.26, lower rotor's mean inflow 13.5 m/s > upper's
+  11.6 m/s (0.125 R: 1.30; 0.25 R: 1.20);
 - (d) tandem of the thesis' proof of concept (two equal rotors in one plane, rotor 2 behind
-  rotor 1, 6° descent at μ = 0.23): rotor 1's wake gives rotor 2 a mean inflow of 8.9 m/s
-  (thrust −41 % before the re-trim) and 67 % of its ≥ 2/rev BVI increment (RMS 6.6 m/s, peak
-  24.8 m/s against 15.2 m/s from its own wake); rotor 2 gives rotor 1 −0.23 m/s (upwash) and
-  1 % of its BVI increment.
+  rotor 1, 6° descent at μ = 0.23): rotor 1's wake gives rotor 2 a mean inflow of 9.0 m/s
+  (thrust −43 % before the re-trim) and 68 % of its ≥ 2/rev BVI increment (RMS 7.4 m/s, peak
+  28.3 m/s against 15.1 m/s from its own wake); rotor 2 gives rotor 1 −0.24 m/s (upwash) and
+  1.5 % of its BVI increment.
 Coaxial and tandem tests are marked slow (≈ 15–25 s each on the shared machine).
 """
 
