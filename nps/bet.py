@@ -314,10 +314,23 @@ def check_geometry(geometry: RotorGeometry) -> None:
         ("thickness_ratio", 0.0 < g.thickness_ratio < 1.0, "0 < t/c < 1"),
         ("lock_number", math.isfinite(g.lock_number) and g.lock_number > 0.0, "a positive number"),
         ("rotation_sign", g.rotation_sign in (1, -1), "+1 or -1"),
+        ("higher_harmonic_pitch", all(_harmonic_ok(h) for h in g.higher_harmonic_pitch),
+         "(n >= 1, finite amplitude and phase in rad) entries"),
+        ("elastic_twist_harmonics", all(_harmonic_ok(h, 0) for h in g.elastic_twist_harmonics),
+         "(n >= 0, finite cos and sin coefficients in rad) entries"),
     ]
     for name, ok, expected in checks:
         if not ok:
             raise ValueError(f"rotor '{g.name}': {name}: expected {expected}, got {getattr(g, name.split('.')[0])!r}")
+
+
+def _harmonic_ok(entry, lowest: int = 1) -> bool:
+    """A prescribed-motion entry (n, a, b): integer n >= ``lowest``, finite a and b."""
+    try:
+        n, a, b = entry
+    except (TypeError, ValueError):
+        return False
+    return float(n) == int(n) and int(n) >= lowest and math.isfinite(a) and math.isfinite(b)
 
 
 def check_operating_point(op: OperatingPoint, name: str) -> None:
@@ -333,9 +346,14 @@ def check_operating_point(op: OperatingPoint, name: str) -> None:
 
 
 class _Disk:
-    """Static arrays of one rotor × operating point × grid and the disk evaluation."""
+    """Static arrays of one rotor × operating point × grid and the disk evaluation.
 
-    def __init__(self, geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, tip_loss: bool):
+    ``interference``: optional (ΔU_T, ΔU_P) fields (n_psi, n_r) in m/s added to the velocities
+    (other rotors' induced velocity, ``nps.interaction``); None leaves the model untouched.
+    """
+
+    def __init__(self, geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, tip_loss: bool,
+                 interference: tuple[np.ndarray, np.ndarray] | None = None):
         self.g, self.op, self.grid, self.tip_loss = geometry, op, grid, tip_loss
         R, omega, s = geometry.radius_m, op.omega_rad_s, geometry.rotation_sign
         self.r, self.dr = radial_stations(geometry, grid.n_r)
@@ -345,9 +363,20 @@ class _Disk:
         self.mu_yp = s * op.mu_y
         self.mu = math.hypot(op.mu_x, op.mu_y)
         self.ut = omega * self.r[None, :] + self.tip_speed * (op.mu_x * self.sin - self.mu_yp * self.cos)
+        self.extra_up = None
+        if interference is not None:
+            d_ut, d_up = (np.asarray(a, dtype=float) for a in interference)
+            if d_ut.shape != (grid.n_psi, grid.n_r) or d_up.shape != d_ut.shape:
+                raise ValueError(f"rotor '{geometry.name}': interference: expected two ({grid.n_psi}, {grid.n_r}) "
+                                 f"fields, got {d_ut.shape}, {d_up.shape}")
+            if not (np.isfinite(d_ut).all() and np.isfinite(d_up).all()):
+                raise ValueError(f"rotor '{geometry.name}': interference: non-finite velocities")
+            self.ut = self.ut + d_ut
+            self.extra_up = d_up
         self.ur = self.tip_speed * (op.mu_x * self.cos + self.mu_yp * self.sin)
         self.rbar = self.r[None, :] / R
         self.twist = geometry.twist_at(self.r)[None, :]
+        self.prescribed_pitch = geometry.prescribed_pitch(psi, self.r)
         self.flap_arm = np.maximum(self.r - geometry.hinge_offset_m, 0.0)
         self.nu2 = flap_frequency_sq(geometry)
         self.i_omega2 = flap_inertia(geometry, op.density_kg_m3) * omega**2
@@ -368,10 +397,14 @@ class _Disk:
         i = self.inflow(lambda0)
         omega = self.op.omega_rad_s
         theta = c.theta0_rad + c.theta1c_rad * self.cos + c.theta1s_rad * self.sin + self.twist
+        if self.prescribed_pitch is not None:
+            theta = theta + self.prescribed_pitch
         lam = self.op.mu_z + lambda0 * (1.0 + self.rbar * (i.kx * self.cos + i.ky * self.sin))
         beta = beta0 + beta1c * self.cos + beta1s * self.sin
         beta_dot = omega * (beta1s * self.cos - beta1c * self.sin)
         up = self.tip_speed * lam + (self.r[None, :] - self.g.hinge_offset_m) * beta_dot + self.ur * beta
+        if self.extra_up is not None:
+            up = up + self.extra_up
         forces = section_forces(self.ut, up, theta, self.r[None, :], self.g, self.op.density_kg_m3,
                                 self.op.speed_of_sound_mps, tip_loss=self.tip_loss)
         self.evaluations += 1
@@ -608,8 +641,12 @@ def trim_rotor(
     max_outer: int = 20,
     max_secant: int = 12,
     tip_loss: bool = True,
+    interference: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> RotorTrim:
     """Trim θ0, θ1s, θ1c to the thrust and hub-moment targets of ``op`` (thesis Fig. 4.3).
+
+    ``interference``: optional (ΔU_T, ΔU_P) (n_psi, n_r) m/s added to the section velocities
+    (other rotors' wakes, see :class:`_Disk`); λ0 stays the rotor's own momentum inflow.
 
     Each outer iteration runs the three steps (θ0 → T, phased cyclic → M_y, then → M_x;
     module docstring), each a secant iteration to a quarter of its tolerance with the inflow and
@@ -617,8 +654,10 @@ def trim_rotor(
     tolerance; otherwise :class:`TrimError` with the residuals and the case.
     """
     target, tol, thrust_ref, k_hub = _trim_targets(geometry, op, tol_rel)
-    disk = _Disk(geometry, op, grid, tip_loss)
+    disk = _Disk(geometry, op, grid, tip_loss, interference)
     x0, theta0 = _initial_state(geometry, op, op.thrust_N)
+    if interference is not None:  # linear theory: the same thrust needs Δθ0 = 3/2 Δλ more collective
+        theta0 = float(np.clip(theta0 + 1.5 * np.mean(disk.extra_up) / disk.tip_speed, -0.5, 0.5))
     it = _TrimIteration(disk, _StateSolver(disk, x0), target, thrust_ref, k_hub, np.array([theta0, 0.0, 0.0]))
     steps = _control_steps(it)
     slopes: dict = {}

@@ -353,8 +353,6 @@ def bvi_loads(
     ``ct``: the loads' thrust coefficient. Returns a table with exactly the disk-table
     columns, the trim's θ, β and geometry unchanged (no re-trim).
     """
-    from nps import bet  # the loads stage; imported here so the wake can be used on its own
-
     grid = disk_grid(disk)
     state = wake_state(disk, trim_row, ct)
     beta = disk["beta_rad"].to_numpy(dtype=float).reshape(grid.shape)
@@ -363,6 +361,24 @@ def bvi_loads(
     if model.removed_harmonics is not None:
         d_ut = remove_low_harmonics(d_ut, model.removed_harmonics)
         d_up = remove_low_harmonics(d_up, model.removed_harmonics)
+    return loads_with_increments(disk, trim_row, geometry, d_ut, d_up, v, model)
+
+
+def loads_with_increments(
+    disk: pd.DataFrame,
+    trim_row: Mapping,
+    geometry: RotorGeometry,
+    d_ut: np.ndarray,
+    d_up: np.ndarray,
+    velocity_hp: np.ndarray,
+    model: BVIModel = BVIModel(),
+) -> BVIResult:
+    """The disk table with lifting-line increments (ΔU_T, ΔU_P) (n_psi, n_r) in m/s added:
+    gust response (``model.unsteady``, with the disk's U_T) and section loads recomputed with the
+    disk's θ (no re-trim). ``velocity_hp`` is only carried into the result."""
+    from nps import bet  # the loads stage; imported here so the wake can be used on its own
+
+    grid = disk_grid(disk)
     if model.unsteady:
         ut0 = disk["ut_mps"].to_numpy(dtype=float).reshape(grid.shape)
         omega, radius = float(trim_row["omega_rad_s"]), float(trim_row["radius_m"])
@@ -388,4 +404,4 @@ def bvi_loads(
     out["inflow_ratio"] = disk["inflow_ratio"].to_numpy(dtype=float) + d_up.ravel() / tip_speed
     for column in ("alpha_eff_rad", "mach", "fz_N_per_m", "fx_N_per_m", "circulation_m2_s"):
         out[column] = np.broadcast_to(np.asarray(getattr(forces, column), dtype=float), ut.shape)
-    return BVIResult(out.reset_index(drop=True), d_ut, d_up, v)
+    return BVIResult(out.reset_index(drop=True), d_ut, d_up, velocity_hp)

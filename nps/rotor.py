@@ -7,6 +7,7 @@ trim artifact (``trim.parquet``, one row per rotor). Frames and signs: docs/conv
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Mapping
 
@@ -30,6 +31,12 @@ class RotorGeometry:
     as :meth:`from_config` sets them. ``hinge_offset_m`` e of the flap hinge; ``lock_number``
     γ = ρ a c R⁴ / I_β (at the reference density of the configuration, a and c the reference
     lift slope and chord).
+
+    Optional prescribed blade motion (e.g. a wind-tunnel test run as measured; empty = none):
+    ``higher_harmonic_pitch`` ((n, θ_n rad, ψ_n rad), ...) adds Σ θ_n cos(nψ − ψ_n) to the pitch
+    of the whole blade (higher-harmonic control); ``elastic_twist_harmonics`` ((n, c_n rad,
+    s_n rad), ...) adds (r/R) Σ (c_n cos nψ + s_n sin nψ), an elastic torsion given at the tip
+    and linear along the span (n = 0 is the mean).
     """
 
     name: str
@@ -45,6 +52,8 @@ class RotorGeometry:
     airfoil: Airfoil = field(default_factory=LinearAirfoil)
     blade: BladeTable | None = None
     airfoils: Mapping[str, Airfoil] = field(default_factory=dict)
+    higher_harmonic_pitch: tuple[tuple[int, float, float], ...] = ()
+    elastic_twist_harmonics: tuple[tuple[int, float, float], ...] = ()
 
     def __post_init__(self):
         if self.blade is not None:
@@ -88,12 +97,26 @@ class RotorGeometry:
             total = part if total is None else [t + p for t, p in zip(total, part)]
         return tuple(total)
 
+    def prescribed_pitch(self, psi_rad, r_m) -> np.ndarray | None:
+        """Prescribed pitch (rad), (n_psi, n_r), of the higher-harmonic and elastic-twist
+        inputs at azimuths ``psi_rad`` (n_psi,) and stations ``r_m`` (n_r,); None without them."""
+        if not (self.higher_harmonic_pitch or self.elastic_twist_harmonics):
+            return None
+        psi = np.asarray(psi_rad, dtype=float)[:, None]
+        rbar = np.asarray(r_m, dtype=float)[None, :] / self.radius_m
+        hhc = sum((amp * np.cos(n * psi - phase) for n, amp, phase in self.higher_harmonic_pitch), np.zeros_like(psi))
+        elastic = sum((c * np.cos(n * psi) + s * np.sin(n * psi) for n, c, s in self.elastic_twist_harmonics),
+                      np.zeros_like(psi))
+        return hhc + rbar * elastic
+
     @classmethod
     def from_config(cls, rotor: Mapping) -> "RotorGeometry":
         """Build from one validated ``rotors[]`` entry of an aircraft configuration.
 
         Table paths (``airfoil.table``, ``airfoils.*.table``, ``blade.table``) are read as given
         (:func:`nps.config.load_aircraft` makes them absolute, relative to the aircraft file).
+        Optional prescribed motion entries: ``higher_harmonic_pitch: [{n, amplitude_deg,
+        phase_deg}, ...]``, ``elastic_twist_harmonics: [{n, cos_deg, sin_deg}, ...]``.
         """
         name = str(rotor["name"])
         radius = float(rotor["radius_m"])
@@ -128,6 +151,12 @@ class RotorGeometry:
             airfoil=airfoil,
             blade=blade,
             airfoils=airfoils,
+            higher_harmonic_pitch=tuple(
+                (int(h["n"]), math.radians(float(h["amplitude_deg"])), math.radians(float(h["phase_deg"])))
+                for h in rotor.get("higher_harmonic_pitch", ())),
+            elastic_twist_harmonics=tuple(
+                (int(h["n"]), math.radians(float(h["cos_deg"])), math.radians(float(h["sin_deg"])))
+                for h in rotor.get("elastic_twist_harmonics", ())),
         )
 
 

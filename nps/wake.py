@@ -467,16 +467,19 @@ def hub_to_ground(points_h, time_s, hub_position_m, velocity_mps, r_gh) -> np.nd
     return np.asarray(points_h, dtype=float) @ np.asarray(r_gh, dtype=float).T + hub
 
 
-def wake_table(state: WakeState, model: WakeModel, psi_blade_rad, motion) -> pd.DataFrame:
+def wake_table(state: WakeState, model: WakeModel, psi_blade_rad, motion, snapshot=None) -> pd.DataFrame:
     """Wake-geometry artifact rows (``wake/{rotor}.parquet``): one row per vortex node per step.
 
     ``psi_blade_rad``: blade-0 azimuths of the snapshots (time t = ψ/Ω after t = 0);
     ``motion``: :class:`nps.rotor.RotorMotion` (hub position, velocity, R_GH). Positions in
     the hub frame H (``*_h_m``) and the ground frame G (``x_m``, ``y_m``, ``z_m``).
+    ``snapshot``: ψ → :class:`WakeSnapshot` (H'); default the Beddoes :func:`wake_snapshot`
+    (e.g. ``lambda psi: nps.freewake.wake_snapshot(solution, rotor, psi)`` for the free wake).
     """
+    snapshot = snapshot or (lambda psi: wake_snapshot(state, model, psi))
     frames = []
     for step, psi_b in enumerate(np.asarray(psi_blade_rad, dtype=float)):
-        snap = wake_snapshot(state, model, psi_b)
+        snap = snapshot(psi_b)
         nodes_h = to_hub_frame(snap.nodes_m, state.rotation_sign)
         time_s = psi_b / state.omega_rad_s
         nodes_g = hub_to_ground(nodes_h, time_s, motion.hub_position_m, motion.velocity_mps, motion.r_gh)

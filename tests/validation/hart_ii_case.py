@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from nps import bet, bvi, wake
+from nps import bet, bvi, freewake, interaction, wake
 from nps.airfoils import LinearAirfoil
 from nps.rotor import OperatingPoint, RotorGeometry
 
@@ -42,6 +42,60 @@ TRIM_ROW = dict(
 
 
 @dataclass(frozen=True)
+class Case:
+    """One HART-II condition (opencopter_hart_ii_params.json5, shared validation set): shaft angle
+    (deg, aft), ρ, c0, Ω, targets T, M_x, M_y, the 3/rev HHC θ3 cos(3ψ − ψ3) and the measured
+    elastic-twist harmonics (n, cos, sin) in rad (tip values, linear along the span)."""
+
+    name: str
+    shaft_deg: float
+    rho: float
+    c0: float
+    omega: float
+    thrust: float
+    roll: float
+    pitch: float
+    theta3_deg: float
+    psi3_deg: float
+    elastic_twist: tuple
+
+
+def _harmonics(cos, sin):
+    return tuple((n, c, sin[n - 1] if 1 <= n <= len(sin) else 0.0) for n, c in enumerate(cos))
+
+
+CASES = {
+    "BL": Case("BL", 4.3, 1.2055, 341.7, 109.12, 3300.0, 20.0, -20.0, 0.0, 300.0, _harmonics(
+        [-0.009037, 0.002961, -0.009796, 0.0005252, 0.001129, -0.0006439, -0.0001786, -0.0004622],
+        [-0.003797, 5.21e-06, -0.000541, 0.001793, 0.0003353, -2.835e-05, -0.00036])),
+    "MN": Case("MN", 4.3, 1.1931, 342.2, 109.01, 3300.0, 30.0, -30.0, 0.8, 300.0, _harmonics(
+        [-0.009094, 0.003301, -0.007287, 0.02032, 0.001536, 0.0007229, -0.001406],
+        [-0.00368, -0.001816, 0.009208, -0.001166, 0.0009517, 0.0008305])),
+    "MV": Case("MV", 4.5, 1.1868, 343.0, 109.01, 3290.0, 20.0, -30.0, 0.8, 180.0, _harmonics(
+        [-0.008342, 0.00214, -0.01411, -0.002624, -0.0006886, -0.0007247, -3.277e-05],
+        [-0.001991, 0.0008361, -0.02615, 0.001571, 0.001287, -6.494e-05])),
+}
+
+
+def case_setup(case: Case):
+    """(geometry with the prescribed blade motion, operating point, trim row) of a condition."""
+    from dataclasses import replace
+
+    geometry = replace(GEOMETRY, elastic_twist_harmonics=case.elastic_twist,
+                       higher_harmonic_pitch=((3, np.radians(case.theta3_deg), np.radians(case.psi3_deg)),)
+                       if case.theta3_deg else ())
+    shaft = np.radians(case.shaft_deg)
+    mu_x = SPEED * np.cos(shaft) / (case.omega * RADIUS_M)
+    mu_z = -SPEED * np.sin(shaft) / (case.omega * RADIUS_M)
+    op = OperatingPoint(omega_rad_s=case.omega, mu_x=mu_x, mu_y=0.0, mu_z=mu_z, density_kg_m3=case.rho,
+                        speed_of_sound_mps=case.c0, thrust_N=case.thrust, roll_moment_Nm=case.roll,
+                        pitch_moment_Nm=case.pitch)
+    row = dict(n_blades=4, radius_m=RADIUS_M, omega_rad_s=case.omega, rotation_sign=1, mu_x=mu_x, mu_y=0.0, mu_z=mu_z,
+               density_kg_m3=case.rho, speed_of_sound_mps=case.c0)
+    return geometry, op, row
+
+
+@dataclass(frozen=True)
 class HartResult:
     trim: bet.RotorTrim
     bvi: bvi.BVIResult
@@ -52,9 +106,9 @@ class HartResult:
     r_station_m: float
 
 
-def cn_m2(fz_N_per_m):
+def cn_m2(fz_N_per_m, rho: float = RHO, c0: float = C0):
     """M²C_n = F_n / (½ ρ c0² c), F_n ≈ F_z (normal force per span)."""
-    return np.asarray(fz_N_per_m) / (0.5 * RHO * C0**2 * CHORD)
+    return np.asarray(fz_N_per_m) / (0.5 * rho * c0**2 * CHORD)
 
 
 def run(n_psi: int = 360, n_r: int = 50, model: wake.WakeModel | None = None, bvi_model: bvi.BVIModel = bvi.BVIModel()) -> HartResult:
@@ -69,9 +123,9 @@ def run(n_psi: int = 360, n_r: int = 50, model: wake.WakeModel | None = None, bv
     return HartResult(trim, res, state, np.degrees(grid.psi_rad), cn_m2(fz0), cn_m2(fz1), float(grid.r_m[j]))
 
 
-def measured_cn():
-    """(ψ deg, M²C_n) measured at r/R = 0.87, 2048 samples."""
-    values = np.loadtxt(DATA / "CnM2_BL_ca.tec", skiprows=3)
+def measured_cn(case: str = "BL"):
+    """(ψ deg, M²C_n) measured at r/R = 0.87, 2048 samples, of condition BL, MN or MV."""
+    values = np.loadtxt(DATA / f"CnM2_{case}_ca.tec", skiprows=3)
     return np.arange(values.size) * 360.0 / values.size, values
 
 
@@ -104,16 +158,34 @@ def window_metrics(psi_deg, values, lo, hi):
 def piv_miss_distances(state: wake.WakeState, model: wake.WakeModel) -> list[tuple]:
     """For each PIV vortex: (side, ψ, y, measured x, z, predicted x, z, miss distance in the
     cut plane y = y_meas), matching the nearest predicted crossing of any blade's vortex."""
+    return _miss_distances(lambda psi: wake.wake_snapshot(state, model, psi).nodes_m)
+
+
+def _miss_distances(nodes_at) -> list[tuple]:
+    """PIV comparison for a wake given as blade-0 azimuth (rad) → nodes (B, N, 3) in H' (m)."""
     out = []
     for side, name in (("advancing", "dnw_adv_bl53.tec"), ("retreating", "dnw_ret_bl53.tec")):
         data = read_piv(name)
         for psi_deg in np.unique(data[:, 0]):
-            snap = wake.wake_snapshot(state, model, np.radians(psi_deg))
+            nodes = nodes_at(np.radians(psi_deg))
             for p, x, y, z in data[data[:, 0] == psi_deg]:
-                cross = wake.filament_plane_crossings(snap.nodes_m, 1, y)
+                cross = wake.filament_plane_crossings(nodes, 1, y)
                 d = np.hypot(cross[:, 0] - x, cross[:, 2] - z)
                 k = int(np.argmin(d))
                 out.append((side, psi_deg, y, x, z, cross[k, 0], cross[k, 2], float(d[k])))
+    return out
+
+
+WINDOWS_DEG = ((30, 80), (280, 330))
+
+
+def window_comparison(psi_deg, cn) -> list[tuple]:
+    """Per BVI window (advancing, retreating): (lo, hi, lag deg, ρ, model p2p, measured p2p)."""
+    pm, cm = measured_cn()
+    out = []
+    for lo, hi in WINDOWS_DEG:
+        lag, rho = window_lag(psi_deg, cn, pm, cm, lo, hi)
+        out.append((lo, hi, lag, rho, window_metrics(psi_deg, cn, lo, hi)[1], window_metrics(pm, cm, lo, hi)[1]))
     return out
 
 
@@ -132,3 +204,46 @@ def window_lag(psi_model_deg, model, psi_meas_deg, meas, lo, hi, max_lag_deg=15.
         if rho > best[1]:
             best = (float(lag), rho)
     return best
+
+
+@dataclass(frozen=True)
+class HartFreeResult:
+    trim: bet.RotorTrim
+    result: interaction.AircraftBVI
+    psi_deg: np.ndarray
+    cn_bvi: np.ndarray
+
+
+def run_free(n_psi: int = 360, n_r: int = 50, free_model: freewake.FreeWakeModel = freewake.FreeWakeModel(),
+             wake_model: wake.WakeModel | None = None, case: Case | None = None) -> HartFreeResult:
+    """The baseline (or ``case`` with its prescribed blade motion) with the free wake:
+    :func:`nps.interaction.aircraft_bvi_loads` on a one-rotor aircraft (hub at the origin, hub
+    frame = G axes)."""
+    import pandas as pd
+
+    geometry, op, trim_row = case_setup(case) if case is not None else (GEOMETRY, OPERATING_POINT, TRIM_ROW)
+    trim = bet.trim_rotor(geometry, op, bet.DiskGrid(n_psi, n_r))
+    row = dict(trim_row, rotor="hart_ii", ct=trim.totals.ct, thrust_N=op.thrust_N,
+               roll_moment_Nm=op.roll_moment_Nm, pitch_moment_Nm=op.pitch_moment_Nm,
+               hub_x_m=0.0, hub_y_m=0.0, hub_z_m=0.0, vel_x_mps=0.0, vel_y_mps=0.0, vel_z_mps=0.0,
+               **{f"r_gh_{i}{j}": float(i == j) for i in range(3) for j in range(3)})
+    config = dict(name="hart_ii", n_blades=4, radius_m=RADIUS_M, chord_m=CHORD, root_cutout_m=0.44, twist_deg=-8.0,
+                  thickness_ratio=0.12, lock_number=8.0, hinge_offset_m=0.29, rotation="ccw",
+                  airfoil=dict(lift_slope_per_rad=6.0, alpha0_deg=-1.2),
+                  higher_harmonic_pitch=[dict(n=n, amplitude_deg=np.degrees(a), phase_deg=np.degrees(p))
+                                         for n, a, p in geometry.higher_harmonic_pitch],
+                  elastic_twist_harmonics=[dict(n=n, cos_deg=np.degrees(c), sin_deg=np.degrees(s))
+                                           for n, c, s in geometry.elastic_twist_harmonics])
+    result = interaction.aircraft_bvi_loads(pd.DataFrame([row]), {"hart_ii": config}, {"hart_ii": trim.disk},
+                                            {"hart_ii": trim.summary()}, wake_model or wake.WakeModel(steps_per_rev=n_psi),
+                                            free_model)
+    disk = result.results["hart_ii"].disk
+    grid = bvi.disk_grid(disk)
+    j = int(np.argmin(np.abs(grid.r_m / RADIUS_M - R_OVER_R)))
+    fz = disk["fz_N_per_m"].to_numpy().reshape(grid.shape)[:, j]
+    return HartFreeResult(trim, result, np.degrees(grid.psi_rad), cn_m2(fz, op.density_kg_m3, op.speed_of_sound_mps))
+
+
+def piv_miss_distances_free(solution: freewake.FreeWakeSolution) -> list[tuple]:
+    """As :func:`piv_miss_distances` for the relaxed free wake (its nodes on the relaxation grid)."""
+    return _miss_distances(lambda psi: freewake.snapshot_nodes(solution, solution.rotors[0].name, psi))

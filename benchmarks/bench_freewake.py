@@ -1,0 +1,75 @@
+"""Benchmark: free wake + BVI loads of all rotors of one aircraft in segment 3 (6° descent) at the
+campaign resolution (issue 12 targets on the 2-core machine: coaxial < 20 s, helicopter < 10 s).
+
+The inputs are made as the workflow makes them (``nps.trim.trim_aircraft`` for the segment, then
+``nps.bet.trim_rotor`` per rotor on the config's n_psi × n_r disk, the config's ``wake:`` block and
+``resolution``), then :func:`nps.interaction.aircraft_bvi_loads` is timed: wake relaxation (all
+rotors together), every rotor's disk velocity from every rotor's wake, re-trims, section loads.
+Prints the first call (including numba's cache load or compilation), then the best of 3 runs
+(wall time and the process CPU time of that run: on the shared machine the wall time depends on
+the other users' load, the CPU time over the 2 threads bounds the idle-machine wall time), the
+relaxation iterations and the interaction summary.
+Run from the repository root: ``PYTHONPATH=. python benchmarks/bench_freewake.py [aircraft ...]``.
+"""
+
+import os
+import sys
+import time
+
+import numba
+import pandas as pd
+import yaml
+
+from nps import bet, interaction, wake
+from nps.atmosphere import isa
+from nps.config import load_aircraft, load_mission
+from nps.rotor import OperatingPoint, RotorGeometry
+from nps.trim import FlightCondition, trim_aircraft
+
+
+def segment_inputs(aircraft_name: str, segment: str = "seg3"):
+    """(trim table, rotor configs, disks, summaries, wake model) as the workflow makes them."""
+    config = yaml.safe_load(open("config/config.yaml"))
+    aircraft = load_aircraft(f"config/aircraft/{aircraft_name}.yaml")
+    mission = load_mission(f"config/missions/{config['campaign']['mission']}.yaml")
+    speeds = next(s for s in mission["segments"] if s["id"] == segment)["aircraft"][aircraft_name]
+    atm = config["atmosphere"]
+    flight = FlightCondition(speeds["forward_speed_mps"], speeds["climb_speed_mps"],
+                             isa(atm["altitude_m"], atm["isa_delta_K"], atm["relative_humidity_pct"]))
+    trim = trim_aircraft(aircraft, flight, speeds.get("rotor_omega_scale"))
+    res = config["resolution"]
+    configs, disks, summaries = {}, {}, {}
+    for rotor in aircraft["rotors"]:
+        row = trim[trim["rotor"] == rotor["name"]].iloc[0]
+        loads = bet.trim_rotor(RotorGeometry.from_config(rotor), OperatingPoint.from_trim_row(row),
+                               bet.DiskGrid(res["n_psi"], res["n_r"]))
+        configs[rotor["name"]], disks[rotor["name"]], summaries[rotor["name"]] = rotor, loads.disk, loads.summary()
+    model = wake.WakeModel.from_config(config["wake"], res["wake_revolutions"], res["n_psi"])
+    return trim, configs, disks, summaries, model
+
+
+def main(names) -> None:
+    pd.set_option("display.width", 200)
+    print(f"numba threads: {numba.get_num_threads()}")
+    for name in names:
+        inputs = segment_inputs(name)
+        start = time.perf_counter()
+        done = interaction.aircraft_bvi_loads(*inputs)
+        first = time.perf_counter() - start
+        wall, cpu = min(_timed(inputs) for _ in range(3))
+        print(f"{name} seg3: free wake + BVI loads of {len(inputs[1])} rotors: first {first:.2f} s, best {wall:.2f} s "
+              f"wall ({cpu:.2f} s CPU, load average {os.getloadavg()[0]:.1f}); relaxation {done.solution.iterations} "
+              f"iterations, last node change {done.solution.residual_history[-1]:.4f} R")
+        print(done.summary.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
+
+
+def _timed(inputs) -> tuple[float, float]:
+    """(wall s, CPU s of this process) of one call."""
+    cpu0, start = os.times(), time.perf_counter()
+    interaction.aircraft_bvi_loads(*inputs)
+    cpu1 = os.times()
+    return time.perf_counter() - start, (cpu1.user - cpu0.user) + (cpu1.system - cpu0.system)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:] or ["coaxial", "helicopter"])

@@ -1,0 +1,512 @@
+"""Free-vortex tip wake of all rotors of an aircraft, relaxed to the periodic state.
+
+Equations, constants and their sources: ``docs/models/wake_bvi.md`` ("Free-vortex wake").
+
+Unknowns. For every rotor q, the tip vortex trailed by blade 0 is stored as node positions
+X_q[i, j] in the rotor's ccw-equivalent hub frame H'_q (metres, :mod:`nps.wake`): blade 0 at
+azimuth ψ_i = iΔ, wake age φ_j = jΔ, Δ = 2π/N (``FreeWakeModel.steps_per_rev``), j = 0…J
+(J = revolutions · N). Blade k's vortex at time t is blade 0's at ψ + 2πk/B (identical blades,
+periodic flight). Node j = 0 is the flapped blade tip (release radius r_r). X_q is written
+as the Beddoes geometry plus a distortion, X = X_Beddoes + D; D = 0 is the prescribed wake,
+the initial guess, so that the first iterate gives exactly today's Beddoes result.
+
+Kinematics. In the frame moving with the aircraft every node moves with the local flow:
+
+    Ω_q (∂X/∂ψ + ∂X/∂φ) = V_∞,q + Σ_{rotors p} Σ_{blades} V_BS(X; tip and bound vortex of p)
+
+V_∞,q = Ω_q R_q (μ_x, s μ_y, −μ_z) (NPS signs, H'_q), V_BS the Biot–Savart velocity of
+straight segments with a Vatistas core (:func:`nps.wake._segment`); a blade's bound vortex
+runs from the hub centre to its tip node (horseshoe with the tip vortex). Rotor p's wake enters
+rotor q's equations at the same time t = ψ_i/Ω_q, i.e. at p's azimuth Ω_p t (blade 0 of every
+rotor is at ψ = 0 at t = 0, as in :class:`nps.rotor.RotorMotion`); p's distortion is
+interpolated linearly (periodic) in ψ and linearly in φ.
+
+Far wake: the free wake is continued by ``far_revolutions`` turns convected rigidly with the
+mean velocity of the last free turn, X[i, J+m] = X[i−m, J] + m Δt V̄_J (Δt = Δ/Ω, V̄_J the
+mean over ψ of V[·, J]), so that the end of the free wake is not a truncated helix (which
+would halve the downwash there) and the old, rolled-up wake cannot wander.
+
+Discretisation (Bagai & Leishman 1995, five-point central difference about (i−½, j−½), with
+Δψ = Δφ the ψ and φ differences combine into a march along the characteristic i − j):
+
+    X[i, j] = X[i−1, j−1] + (Δ/Ω) · ¼ (V[i, j] + V[i−1, j] + V[i, j−1] + V[i−1, j−1])
+
+marched in j (pseudo-implicit: X[i−1, j−1] is already the new value), i periodic.
+Predictor–corrector per iteration n (PIPC): the predictor uses velocities V⁽ⁿ⁻¹⁾ of the last
+geometry; the corrector marches again with ½(V⁽ⁿ⁻¹⁾ + V(X̃)) of the last and the predicted
+geometry. Stabilising scheme: under-relaxation X⁽ⁿ⁾ = X⁽ⁿ⁻¹⁾ + ω (X_c − X⁽ⁿ⁻¹⁾)
+(``relaxation`` ω) and a core floor of the node kinematics (the core smooths close
+vortex–vortex encounters that the straight segments of the coarse grid cannot resolve). Converged when max |X⁽ⁿ⁾ − X⁽ⁿ⁻¹⁾| < ``tolerance_radius_fraction`` · R for
+every rotor; non-finite nodes or no convergence raise :class:`FreeWakeError`.
+
+Cores. Node kinematics use r_c² = r_c0² + 4 α δ ν φ/Ω, δ = 1 + a₁ Γ/ν (Squire /
+Bhagwat–Leishman) with r_c0 = max(HART-II PIV core, floor); blade loads keep the lifting-line
+core of :class:`nps.wake.WakeModel` (c/2, chordwise averaging; docs).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Mapping, Sequence
+
+import numpy as np
+
+from nps import wake
+from nps.jit import kernel, prange
+
+# r_c0 / c of a young tip vortex: HART-II PIV (van der Wall & Richard 2006; Yu et al. 2002),
+# core radii of ≈ 0.14 c for the young advancing- and retreating-side vortices.
+HART_II_CORE_RADIUS_CHORDS = 0.14
+# Bhagwat & Leishman (2000): δ = 1 + a₁ Γ_v/ν with a₁ = 6.5e-5 from rotor tip-vortex measurements.
+BHAGWAT_LEISHMAN_A1 = 6.5e-5
+
+
+class FreeWakeError(RuntimeError):
+    """The free-wake relaxation diverged, produced non-finite nodes or did not converge."""
+
+
+@dataclass(frozen=True)
+class FreeWakeModel:
+    """Parameters of the free-wake relaxation (SI; docs/models/wake_bvi.md).
+
+    ``steps_per_rev`` N: relaxation grid Δψ = Δφ = 2π/N; ``revolutions``: free (relaxed) wake
+    age; ``far_revolutions``: rigid far wake after it; ``core_radius_chords``: initial physical
+    core r_c0/c; ``core_floor_chords``: lower bound of r_c0/c in the node kinematics (the
+    resolution of the straight-segment wake on the relaxation grid; docs); ``core_growth``
+    with ``growth_a1`` and ``viscosity_m2_s``; ``relaxation`` ω in (0, 1]; ``tolerance_radius_fraction``:
+    convergence when the largest node change between two iterations is below this × R;
+    ``max_iterations``; ``vatistas_n``.
+    """
+
+    steps_per_rev: int = 36
+    revolutions: float = 1.5
+    far_revolutions: float = 1.0
+    core_radius_chords: float = HART_II_CORE_RADIUS_CHORDS
+    core_floor_chords: float = 1.0
+    core_growth: bool = True
+    growth_a1: float = BHAGWAT_LEISHMAN_A1
+    viscosity_m2_s: float = wake.AIR_KINEMATIC_VISCOSITY_M2_S
+    relaxation: float = 0.5
+    tolerance_radius_fraction: float = 0.01
+    max_iterations: int = 60
+    vatistas_n: float = 2.0
+
+    def __post_init__(self):
+        checks = {
+            "steps_per_rev": self.steps_per_rev >= 8,
+            "revolutions": self.revolutions > 0.0,
+            "far_revolutions": self.far_revolutions >= 0.0,
+            "core_radius_chords": self.core_radius_chords > 0.0,
+            "core_floor_chords": self.core_floor_chords >= 0.0,
+            "growth_a1": self.growth_a1 >= 0.0,
+            "viscosity_m2_s": self.viscosity_m2_s > 0.0,
+            "relaxation": 0.0 < self.relaxation <= 1.0,
+            "tolerance_radius_fraction": self.tolerance_radius_fraction > 0.0,
+            "max_iterations": self.max_iterations >= 1,
+            "vatistas_n": self.vatistas_n >= 1.0,
+        }
+        bad = [name for name, ok in checks.items() if not ok]
+        if bad:
+            raise ValueError(f"FreeWakeModel: invalid {bad} in {self}")
+
+    @classmethod
+    def from_config(cls, block: Mapping | None) -> "FreeWakeModel":
+        """From an optional config mapping with any of the field names (defaults elsewhere);
+        unknown keys are an error naming them."""
+        block = dict(block or {})
+        unknown = sorted(set(block) - set(cls.__dataclass_fields__))
+        if unknown:
+            raise ValueError(f"FreeWakeModel: unknown field(s) {unknown}; expected some of {sorted(cls.__dataclass_fields__)}")
+        return cls(**block)
+
+    @property
+    def n_age(self) -> int:
+        """Free (relaxed) age steps J."""
+        return int(round(self.revolutions * self.steps_per_rev))
+
+    @property
+    def n_far(self) -> int:
+        """Far-wake age steps appended after the free wake."""
+        return int(round(self.far_revolutions * self.steps_per_rev))
+
+    @property
+    def step_rad(self) -> float:
+        return 2.0 * math.pi / self.steps_per_rev
+
+
+@dataclass(frozen=True)
+class RotorPlacement:
+    """One rotor of the aircraft: its wake state and where it sits.
+
+    ``hub_position_m`` (3,) in the aircraft-fixed frame with G axes (``trim.parquet`` hub at
+    t = 0), ``r_gh`` (3, 3) takes H components to G components.
+    """
+
+    name: str
+    state: wake.WakeState
+    hub_position_m: np.ndarray
+    r_gh: np.ndarray
+
+    def __post_init__(self):
+        hub = np.asarray(self.hub_position_m, dtype=float)
+        r_gh = np.asarray(self.r_gh, dtype=float)
+        if hub.shape != (3,) or not np.isfinite(hub).all():
+            raise ValueError(f"rotor '{self.name}': hub_position_m: expected 3 finite numbers, got {self.hub_position_m!r}")
+        if r_gh.shape != (3, 3) or not np.allclose(r_gh @ r_gh.T, np.eye(3), atol=1e-6):
+            raise ValueError(f"rotor '{self.name}': r_gh: expected a 3 x 3 rotation matrix, got {self.r_gh!r}")
+
+    @property
+    def to_common(self) -> np.ndarray:
+        """Rotation H' → G: R_GH M_s (M_s = diag(1, s, 1))."""
+        return np.asarray(self.r_gh, dtype=float) @ np.diag([1.0, float(self.state.rotation_sign), 1.0])
+
+    @property
+    def free_stream_hp_mps(self) -> np.ndarray:
+        """Free stream in H' (m/s): Ω R (μ_x, s μ_y, −μ_z)."""
+        s = self.state
+        return s.omega_rad_s * s.radius_m * np.array([s.mu_x, s.rotation_sign * s.mu_y, -s.mu_z])
+
+
+@dataclass(frozen=True)
+class FreeWakeSolution:
+    """Converged free wake: distortion (n_rotors, N, J+1, 3) from the Beddoes geometry (m, each
+    rotor's H'), on ψ_i = iΔ, φ_j = jΔ; ``residual_history`` (iterations,) max |ΔX|/R."""
+
+    rotors: tuple[RotorPlacement, ...]
+    beddoes: wake.WakeModel
+    model: FreeWakeModel
+    distortion_m: np.ndarray
+    iterations: int
+    residual_history: np.ndarray
+
+    def index(self, name: str) -> int:
+        names = [r.name for r in self.rotors]
+        if name not in names:
+            raise ValueError(f"free wake: no rotor '{name}' (rotors {names})")
+        return names.index(name)
+
+
+@dataclass(frozen=True)
+class _Sources:
+    """Packed per-rotor arrays of the Biot–Savart kernel (see :func:`_sources`)."""
+
+    params: np.ndarray  # (n_rot, n_p) wake.wake_scalars
+    gamma: np.ndarray  # (n_rot, n_tab)
+    beta: np.ndarray  # (n_rot, n_tab)
+    distortion: np.ndarray  # (n_rot, N, J+1, 3)
+    core: np.ndarray  # (n_rot, 3): r_c0, growth coefficient, a1/ν
+
+
+def _common_tables(rotors: Sequence[RotorPlacement]) -> tuple[np.ndarray, np.ndarray]:
+    """Γ and β tables of all rotors on one periodic grid (the longest one), (n_rot, n)."""
+    n = max(len(r.state.gamma_table_m2_s) for r in rotors)
+    psi = 2.0 * np.pi * np.arange(n) / n
+    out = []
+    for r in rotors:
+        own = r.state.psi_table_rad
+        out.append([np.interp(psi, own, np.asarray(t, dtype=float), period=2.0 * np.pi) if len(own) != n
+                    else np.asarray(t, dtype=float) for t in (r.state.gamma_table_m2_s, r.state.beta_table_rad)])
+    return np.ascontiguousarray([o[0] for o in out]), np.ascontiguousarray([o[1] for o in out])
+
+
+def _sources(rotors, beddoes: wake.WakeModel, distortion, core_radius_chords, core_growth, growth_a1, viscosity) -> _Sources:
+    gamma, beta = _common_tables(rotors)
+    params = np.ascontiguousarray([wake.wake_scalars(r.state, beddoes) for r in rotors])
+    core = np.array([
+        [core_radius_chords * r.state.chord_m,
+         4.0 * wake.LAMB_OSEEN_ALPHA * viscosity / r.state.omega_rad_s if core_growth else 0.0,
+         growth_a1 / viscosity] for r in rotors])
+    return _Sources(params, gamma, beta, np.ascontiguousarray(distortion, dtype=float), core)
+
+
+def _physical_sources(rotors, beddoes, model: FreeWakeModel, distortion) -> _Sources:
+    """Node kinematics: r_c0 = max(physical core, floor) · c, growing with age."""
+    return _sources(rotors, beddoes, distortion, max(model.core_radius_chords, model.core_floor_chords),
+                    model.core_growth, model.growth_a1, model.viscosity_m2_s)
+
+
+def _lifting_line_sources(rotors, beddoes: wake.WakeModel, distortion) -> _Sources:
+    """Blade-load evaluation: the Beddoes model's lifting-line core (as the prescribed wake)."""
+    return _sources(rotors, beddoes, distortion, beddoes.core_radius_chords, beddoes.core_growth, beddoes.growth_a1,
+                    beddoes.viscosity_m2_s)
+
+
+def _transforms(rotors: Sequence[RotorPlacement], target: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Maps from each source rotor's H' to the target rotor's H': rotation (n, 3, 3),
+    offset (n, 3) and circulation sign s_q s_p (a mirror reverses the sense of rotation).
+    The target's own map is the exact identity."""
+    t = rotors[target]
+    back = t.to_common.T
+    rot = np.empty((len(rotors), 3, 3))
+    off = np.empty((len(rotors), 3))
+    sign = np.empty(len(rotors))
+    for q, r in enumerate(rotors):
+        if q == target:
+            rot[q], off[q] = np.eye(3), 0.0
+        else:
+            rot[q] = back @ r.to_common
+            off[q] = back @ (np.asarray(r.hub_position_m, float) - np.asarray(t.hub_position_m, float))
+        sign[q] = r.state.rotation_sign * t.state.rotation_sign
+    return rot, off, sign
+
+
+@kernel(inline=True)
+def _distortion_at(table, psi, phi, step):
+    """Bilinear interpolation of one rotor's distortion (N, J+1, 3): periodic in ψ, linear in φ
+    (clamped to the table's age range)."""
+    n, m = table.shape[0], table.shape[1]
+    u = (psi / (2.0 * math.pi)) % 1.0 * n
+    i0 = int(math.floor(u))
+    wu = u - i0
+    i0 = i0 % n
+    i1 = (i0 + 1) % n
+    v = min(phi / step, m - 1.0)
+    j0 = min(int(math.floor(v)), m - 2)
+    wv = v - j0
+    a = (1.0 - wu) * (1.0 - wv)
+    b = wu * (1.0 - wv)
+    c = (1.0 - wu) * wv
+    d = wu * wv
+    return (
+        a * table[i0, j0, 0] + b * table[i1, j0, 0] + c * table[i0, j0 + 1, 0] + d * table[i1, j0 + 1, 0],
+        a * table[i0, j0, 1] + b * table[i1, j0, 1] + c * table[i0, j0 + 1, 1] + d * table[i1, j0 + 1, 1],
+        a * table[i0, j0, 2] + b * table[i1, j0, 2] + c * table[i0, j0 + 1, 2] + d * table[i1, j0 + 1, 2],
+    )
+
+
+@kernel
+def _rotor_nodes(p, gamma_tab, beta_tab, table, table_step, core, psi0, n_age, dphi, nodes, strength, radius):
+    """Nodes (B, n_age+1, 3) in the rotor's own H' when its blade 0 is at ``psi0``: Beddoes
+    geometry plus the interpolated distortion; Γ per node and core radius per node."""
+    n_blades = int(p[1])
+    for k in range(n_blades):
+        psi_k = psi0 + 2.0 * math.pi * k / n_blades
+        for j in range(n_age + 1):
+            phi = j * dphi
+            x, y, z, g = wake._node(p, gamma_tab, beta_tab, psi_k - phi, phi)
+            dx, dy, dz = _distortion_at(table, psi_k, phi, table_step)
+            nodes[k, j, 0], nodes[k, j, 1], nodes[k, j, 2] = x + dx, y + dy, z + dz
+            strength[k, j] = g
+            radius[k, j] = math.sqrt(core[0] * core[0] + core[1] * (1.0 + core[2] * abs(g)) * phi)
+
+
+@kernel(parallel=True)
+def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortion, table_step, core, rot, off, sign,
+                    bound, n_age, dphi, vatistas_n):
+    """Velocity (n_tgt, n_src, n_rows, n_pts, 3) induced at ``points`` (n_tgt, n_rows, n_pts, 3)
+    by every source rotor's tip vortices, in each target rotor's H'. Row i of target t is the
+    instant when the target's blade 0 is at ``row_psi[i]``; source q's blade 0 is then at
+    omega_ratio[t, q]·row_psi[i]. rot (n_tgt, n_src, 3, 3), off (n_tgt, n_src, 3), sign
+    (n_tgt, n_src) map source H' to target H' (:func:`_transforms`); ``bound[t, q]``: add the
+    blades' bound vortices, straight from the hub centre to the tip node (strength Γ_v, core
+    r_c0), closing each tip vortex into a horseshoe."""
+    n_src = params.shape[0]
+    n_tgt, n_rows, n_pts = points.shape[0], points.shape[1], points.shape[2]
+    out = np.zeros((n_tgt, n_src, n_rows, n_pts, 3))
+    max_b = 0
+    for q in range(n_src):
+        max_b = max(max_b, int(params[q, 1]))
+    for ti in prange(n_tgt * n_rows):
+        t = ti // n_rows
+        i = ti % n_rows
+        nodes = np.empty((max_b, n_age + 1, 3))
+        strength = np.empty((max_b, n_age + 1))
+        radius = np.empty((max_b, n_age + 1))
+        for q in range(n_src):
+            n_blades = int(params[q, 1])
+            _rotor_nodes(params[q], gamma[q], beta[q], distortion[q], table_step, core[q],
+                         omega_ratio[t, q] * row_psi[i], n_age, dphi, nodes, strength, radius)
+            for k in range(n_blades):
+                for j in range(n_age + 1):
+                    x, y, z = nodes[k, j, 0], nodes[k, j, 1], nodes[k, j, 2]
+                    nodes[k, j, 0] = rot[t, q, 0, 0] * x + rot[t, q, 0, 1] * y + rot[t, q, 0, 2] * z + off[t, q, 0]
+                    nodes[k, j, 1] = rot[t, q, 1, 0] * x + rot[t, q, 1, 1] * y + rot[t, q, 1, 2] * z + off[t, q, 1]
+                    nodes[k, j, 2] = rot[t, q, 2, 0] * x + rot[t, q, 2, 1] * y + rot[t, q, 2, 2] * z + off[t, q, 2]
+            g_sign = sign[t, q]
+            for m in range(n_pts):
+                px, py, pz = points[t, i, m, 0], points[t, i, m, 1], points[t, i, m, 2]
+                vx = vy = vz = 0.0
+                for k in range(n_blades):
+                    r1x, r1y, r1z = px - nodes[k, 0, 0], py - nodes[k, 0, 1], pz - nodes[k, 0, 2]
+                    n1 = math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z)
+                    for j in range(n_age):
+                        r2x, r2y, r2z = px - nodes[k, j + 1, 0], py - nodes[k, j + 1, 1], pz - nodes[k, j + 1, 2]
+                        n2 = math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z)
+                        dx, dy, dz = wake._segment(
+                            r1x, r1y, r1z, n1, r2x, r2y, r2z, n2,
+                            g_sign * 0.5 * (strength[k, j] + strength[k, j + 1]),
+                            0.5 * (radius[k, j] + radius[k, j + 1]),
+                            vatistas_n,
+                        )
+                        r1x, r1y, r1z, n1 = r2x, r2y, r2z, n2
+                        vx += dx
+                        vy += dy
+                        vz += dz
+                    if bound[t, q]:
+                        h1x, h1y, h1z = px - off[t, q, 0], py - off[t, q, 1], pz - off[t, q, 2]
+                        t1x, t1y, t1z = px - nodes[k, 0, 0], py - nodes[k, 0, 1], pz - nodes[k, 0, 2]
+                        dx, dy, dz = wake._segment(
+                            h1x, h1y, h1z, math.sqrt(h1x * h1x + h1y * h1y + h1z * h1z),
+                            t1x, t1y, t1z, math.sqrt(t1x * t1x + t1y * t1y + t1z * t1z),
+                            g_sign * strength[k, 0], core[q, 0], vatistas_n,
+                        )
+                        vx += dx
+                        vy += dy
+                        vz += dz
+                out[t, q, i, m, 0], out[t, q, i, m, 1], out[t, q, i, m, 2] = vx, vy, vz
+    return out
+
+
+def _induced(rotors, sources: _Sources, targets, points, row_psi, n_age: int, dphi: float, table_step: float,
+             vatistas_n: float, own_bound: bool) -> np.ndarray:
+    """Per-source induced velocity (n_tgt, n_src, n_rows, n_pts, 3) in each target's H' (m/s)
+    at ``points`` (n_tgt, n_rows, n_pts, 3); ``targets``: rotor indices; bound vortices of the
+    other rotors always, of the target itself when ``own_bound``."""
+    maps = [_transforms(rotors, t) for t in targets]
+    rot = np.ascontiguousarray([m[0] for m in maps])
+    off = np.ascontiguousarray([m[1] for m in maps])
+    sign = np.ascontiguousarray([m[2] for m in maps])
+    omega = np.array([r.state.omega_rad_s for r in rotors])
+    ratio = np.ascontiguousarray([omega / omega[t] for t in targets])
+    bound = np.ascontiguousarray([[own_bound or q != t for q in range(len(rotors))] for t in targets], dtype=np.bool_)
+    return _induced_kernel(np.ascontiguousarray(points, dtype=float), np.ascontiguousarray(row_psi, dtype=float), ratio,
+                           sources.params, sources.gamma, sources.beta, sources.distortion, float(table_step),
+                           np.ascontiguousarray(sources.core), rot, off, sign, bound, int(n_age), float(dphi),
+                           float(vatistas_n))
+
+
+def _node_table(rotor: RotorPlacement, beddoes: wake.WakeModel, model: FreeWakeModel) -> np.ndarray:
+    """Beddoes nodes of blade 0 on the relaxation grid (N, J+1, 3), H' (m)."""
+    p = wake.wake_scalars(rotor.state, beddoes)
+    gamma = np.ascontiguousarray(rotor.state.gamma_table_m2_s, dtype=float)
+    beta = np.ascontiguousarray(rotor.state.beta_table_rad, dtype=float)
+    return _beddoes_table(p, gamma, beta, model.steps_per_rev, model.n_age + model.n_far, model.step_rad)
+
+
+@kernel
+def _beddoes_table(p, gamma, beta, n_psi, n_age, step):
+    out = np.empty((n_psi, n_age + 1, 3))
+    for i in range(n_psi):
+        for j in range(n_age + 1):
+            x, y, z, _ = wake._node(p, gamma, beta, i * step - j * step, j * step)
+            out[i, j, 0], out[i, j, 1], out[i, j, 2] = x, y, z
+    return out
+
+
+def _node_velocities(rotors, beddoes, model, base, distortion) -> list[np.ndarray]:
+    """Velocity (N, J+1, 3) of every rotor's free nodes in its own H' (m/s): free stream +
+    all wakes (free and far parts)."""
+    sources = _physical_sources(rotors, beddoes, model, distortion)
+    psi = np.arange(model.steps_per_rev) * model.step_rad
+    free = model.n_age + 1
+    v = _induced(rotors, sources, range(len(rotors)), base[:, :, :free] + distortion[:, :, :free], psi,
+                 model.n_age + model.n_far, model.step_rad, model.step_rad, model.vatistas_n, True).sum(axis=1)
+    return [v[q] + r.free_stream_hp_mps for q, r in enumerate(rotors)]
+
+
+def _march(x_old: np.ndarray, velocity: np.ndarray, step_time_s: float) -> np.ndarray:
+    """Five-point PIPC march X[i, j] = X[i−1, j−1] + Δt ¼ ΣV over the free nodes j ≤ J
+    (``velocity`` (N, J+1, 3)), node 0 fixed, then the far wake (module doc)."""
+    x = x_old.copy()
+    free = velocity.shape[1]
+    v_avg = 0.25 * (velocity + np.roll(velocity, 1, axis=0))
+    v_avg = v_avg[:, 1:] + v_avg[:, :-1]
+    for j in range(1, free):
+        x[:, j] = np.roll(x[:, j - 1], 1, axis=0) + step_time_s * v_avg[:, j - 1]
+    v_far = velocity[:, free - 1].mean(axis=0)
+    for m in range(1, x.shape[1] - free + 1):
+        x[:, free - 1 + m] = np.roll(x[:, free - 1], m, axis=0) + m * step_time_s * v_far
+    return x
+
+
+def relax(rotors: Sequence[RotorPlacement], beddoes: wake.WakeModel, model: FreeWakeModel = FreeWakeModel()) -> FreeWakeSolution:
+    """Free wake of all ``rotors`` together (module doc), from the Beddoes wake as initial guess.
+
+    Raises :class:`FreeWakeError` naming the rotor, the iteration and the residual when a node
+    becomes non-finite, the residual exceeds one radius (divergence) or ``max_iterations`` pass
+    without max |ΔX| < ``tolerance_radius_fraction`` · R for every rotor.
+    """
+    rotors = tuple(rotors)
+    if not rotors:
+        raise ValueError("free wake: expected at least one rotor")
+    names = [r.name for r in rotors]
+    if len(set(names)) != len(names):
+        raise ValueError(f"free wake: rotor names must be unique, got {names}")
+    base = np.stack([_node_table(r, beddoes, model) for r in rotors])
+    distortion = np.zeros_like(base)
+    radius = np.array([r.state.radius_m for r in rotors])
+    dt = np.array([model.step_rad / r.state.omega_rad_s for r in rotors])
+    history = []
+    for iteration in range(1, model.max_iterations + 1):
+        x_old = base + distortion
+        v_old = _node_velocities(rotors, beddoes, model, base, distortion)
+        predicted = np.stack([_march(x_old[q], v_old[q], dt[q]) for q in range(len(rotors))])
+        _check_finite(rotors, predicted, iteration, "predictor")
+        v_pred = _node_velocities(rotors, beddoes, model, base, predicted - base)
+        corrected = np.stack([_march(x_old[q], 0.5 * (v_old[q] + v_pred[q]), dt[q]) for q in range(len(rotors))])
+        x_new = x_old + model.relaxation * (corrected - x_old)
+        _check_finite(rotors, x_new, iteration, "corrector")
+        change = np.array([np.abs(x_new[q] - x_old[q]).max() / radius[q] for q in range(len(rotors))])
+        history.append(float(change.max()))
+        distortion = x_new - base
+        worst = int(np.argmax(change))
+        if change[worst] > 1.0:
+            raise FreeWakeError(f"free wake diverged: rotor '{names[worst]}', iteration {iteration}, "
+                                f"node change {change[worst]:.3g} R (> 1 R)")
+        if change.max() < model.tolerance_radius_fraction:
+            return FreeWakeSolution(rotors, beddoes, model, distortion, iteration, np.array(history))
+    raise FreeWakeError(
+        f"free wake did not converge: rotor '{names[worst]}', {model.max_iterations} iterations, node change "
+        f"{change[worst]:.3g} R between the last two (tolerance {model.tolerance_radius_fraction:g} R)")
+
+
+def _check_finite(rotors, x, iteration, stage):
+    for q, r in enumerate(rotors):
+        if not np.isfinite(x[q]).all():
+            raise FreeWakeError(f"free wake: non-finite node positions of rotor '{r.name}' in the {stage} of "
+                                f"iteration {iteration}")
+
+
+def disk_induced_velocity(solution: FreeWakeSolution, target: str, psi_rad, r_m, beta_rad) -> np.ndarray:
+    """Velocity (n_rotors, n_psi, n_r, 3) in the target rotor's H' (m/s) induced at its blade
+    stations by each rotor's free wake (index = ``solution.rotors`` order).
+
+    ``psi_rad`` (n_psi,) target blade-0 azimuths, ``r_m`` (n_r,), ``beta_rad`` broadcastable to
+    (n_psi, n_r). Segments 2π/``beddoes.steps_per_rev`` long, lifting-line core of the
+    Beddoes model; with a zero distortion the target's own term equals
+    :func:`nps.wake.disk_induced_velocity`.
+    """
+    t = solution.index(target)
+    psi = np.ascontiguousarray(psi_rad, dtype=float)
+    points = wake.blade_points(psi, r_m, beta_rad)
+    sources = _lifting_line_sources(solution.rotors, solution.beddoes, solution.distortion_m)
+    return _induced(solution.rotors, sources, [t], points[None], psi, solution.beddoes.n_age, solution.beddoes.dphi_rad,
+                    solution.model.step_rad, solution.beddoes.vatistas_n, False)[0]
+
+
+def snapshot_nodes(solution: FreeWakeSolution, rotor: str, psi_blade_rad: float) -> np.ndarray:
+    """Nodes (B, J+1, 3) of the rotor's tip vortices in its own H' (m) when its blade 0 is at
+    ``psi_blade_rad``, on the relaxation age grid (for plots and PIV comparisons)."""
+    return _snapshot(solution, rotor, psi_blade_rad, solution.model.n_age, solution.model.step_rad)[0]
+
+
+def wake_snapshot(solution: FreeWakeSolution, rotor: str, psi_blade_rad: float) -> wake.WakeSnapshot:
+    """The free wake as a :class:`nps.wake.WakeSnapshot` on the Beddoes model's age grid (the
+    ``wake/{rotor}.parquet`` artifact via ``nps.wake.wake_table(..., snapshot=...)``); node
+    strength Γ_v and the physical core radius of the node kinematics."""
+    n_age, step = solution.beddoes.n_age, solution.beddoes.dphi_rad
+    nodes, strength, radius = _snapshot(solution, rotor, psi_blade_rad, n_age, step)
+    return wake.WakeSnapshot(float(psi_blade_rad), nodes, np.arange(n_age + 1) * step, strength, radius)
+
+
+def _snapshot(solution, rotor, psi_blade_rad, n_age, step):
+    q = solution.index(rotor)
+    sources = _physical_sources(solution.rotors, solution.beddoes, solution.model, solution.distortion_m)
+    n_b = solution.rotors[q].state.n_blades
+    nodes = np.empty((n_b, n_age + 1, 3))
+    strength = np.empty((n_b, n_age + 1))
+    radius = np.empty((n_b, n_age + 1))
+    _rotor_nodes(sources.params[q], sources.gamma[q], sources.beta[q], sources.distortion[q], solution.model.step_rad,
+                 sources.core[q], float(psi_blade_rad), n_age, step, nodes, strength, radius)
+    return nodes, strength, radius

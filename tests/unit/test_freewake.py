@@ -1,0 +1,118 @@
+"""Free-vortex wake (nps.freewake): initial guess, guards, errors, frames."""
+
+import numpy as np
+import pytest
+
+from nps import bet, bvi, freewake, wake
+from nps.rotor import OperatingPoint, RotorGeometry
+
+R, OMEGA = 2.0, 109.12
+GEOMETRY = RotorGeometry(name="demo", n_blades=4, radius_m=R, chord_m=0.121, root_cutout_m=0.44,
+                         twist_rad=np.radians(-8.0), thickness_ratio=0.12, lock_number=8.0, hinge_offset_m=0.29)
+ROW = dict(n_blades=4, radius_m=R, omega_rad_s=OMEGA, rotation_sign=1, mu_x=0.15, mu_y=0.0, mu_z=-0.0113)
+BEDDOES = wake.WakeModel(steps_per_rev=72, revolutions=2.0)
+
+
+@pytest.fixture(scope="module")
+def rotor():
+    op = OperatingPoint(OMEGA, ROW["mu_x"], 0.0, ROW["mu_z"], 1.2055, 341.7, 3300.0)
+    trim = bet.trim_rotor(GEOMETRY, op, bet.DiskGrid(72, 12))
+    state = bvi.wake_state(trim.disk, ROW, trim.totals.ct)
+    return trim.disk, freewake.RotorPlacement("demo", state, np.zeros(3), np.eye(3))
+
+
+def test_zero_distortion_is_the_beddoes_wake(rotor):
+    """The initial guess (distortion 0) gives bit for bit the prescribed wake's disk velocity."""
+    disk, placement = rotor
+    grid = bvi.disk_grid(disk)
+    beta = disk["beta_rad"].to_numpy().reshape(grid.shape)
+    model = freewake.FreeWakeModel()
+    table = freewake._node_table(placement, BEDDOES, model)
+    zero = freewake.FreeWakeSolution((placement,), BEDDOES, model, np.zeros_like(table)[None], 0, np.array([]))
+    v_free = freewake.disk_induced_velocity(zero, "demo", grid.psi_rad, grid.r_m, beta)
+    v_beddoes = wake.disk_induced_velocity(placement.state, BEDDOES, grid.psi_rad, grid.r_m, beta)
+    assert v_free.shape == (1,) + v_beddoes.shape
+    assert np.array_equal(v_free[0], v_beddoes)
+
+
+def test_relaxation_converges_and_moves_the_wake(rotor):
+    """Converged: the last node change is below 1 % R, all nodes finite, the wake moved from
+    the Beddoes guess (by more than the tolerance), the release node stays at the blade tip."""
+    _, placement = rotor
+    solution = freewake.relax([placement], BEDDOES)
+    assert solution.residual_history[-1] < 0.01
+    assert np.isfinite(solution.distortion_m).all()
+    assert np.abs(solution.distortion_m).max() > 0.01 * R
+    assert np.array_equal(solution.distortion_m[0, :, 0], np.zeros((36, 3)))
+
+
+def test_non_convergence_is_a_clear_error(rotor):
+    """Too few iterations: FreeWakeError naming the rotor, the iteration count and the residual."""
+    _, placement = rotor
+    with pytest.raises(freewake.FreeWakeError, match=r"rotor 'demo', 2 iterations, node change [0-9.]+ R"):
+        freewake.relax([placement], BEDDOES, freewake.FreeWakeModel(max_iterations=2))
+
+
+def test_marginal_case_stops_with_an_error(rotor):
+    """A forced marginal case — the measured thin core (0.14 c) without the discretisation floor,
+    no core growth, no under-relaxation — does not settle on the 10° grid: the solver raises
+    FreeWakeError instead of returning a wandering wake."""
+    _, placement = rotor
+    marginal = freewake.FreeWakeModel(core_floor_chords=0.0, core_growth=False, relaxation=1.0, max_iterations=40)
+    with pytest.raises(freewake.FreeWakeError, match="rotor 'demo'"):
+        freewake.relax([placement], BEDDOES, marginal)
+
+
+def test_non_finite_nodes_are_caught(rotor, monkeypatch):
+    """A non-finite velocity anywhere stops the relaxation with the rotor named."""
+    _, placement = rotor
+
+    def broken(rotors, beddoes, model, base, distortion):
+        v = np.zeros((base.shape[1], model.n_age + 1, 3))
+        v[3, 5, 2] = np.nan
+        return [v for _ in rotors]
+
+    monkeypatch.setattr(freewake, "_node_velocities", broken)
+    with pytest.raises(freewake.FreeWakeError, match="non-finite node positions of rotor 'demo'"):
+        freewake.relax([placement], BEDDOES)
+
+
+def test_invalid_model_and_inputs_are_named():
+    with pytest.raises(ValueError, match="relaxation"):
+        freewake.FreeWakeModel(relaxation=0.0)
+    with pytest.raises(ValueError, match="steps_per_rev"):
+        freewake.FreeWakeModel(steps_per_rev=4)
+    with pytest.raises(ValueError, match="at least one rotor"):
+        freewake.relax([], BEDDOES)
+
+
+def test_bad_placement_is_named(rotor):
+    _, placement = rotor
+    with pytest.raises(ValueError, match="rotor 'x': hub_position_m"):
+        freewake.RotorPlacement("x", placement.state, np.array([0.0, np.nan, 0.0]), np.eye(3))
+    with pytest.raises(ValueError, match="rotor 'x': r_gh"):
+        freewake.RotorPlacement("x", placement.state, np.zeros(3), 2.0 * np.eye(3))
+
+
+def test_wake_table_of_the_free_wake(rotor):
+    """The free wake writes the wake artifact with the Beddoes table's columns and node count;
+    with a zero distortion the positions equal the Beddoes table's."""
+    from nps.rotor import RotorMotion
+
+    _, placement = rotor
+    motion = RotorMotion(np.zeros(3), np.array([-32.9, 0.0, 0.0]), np.eye(3), OMEGA, 1, 4)
+    psi = np.radians([0.0, 5.0])
+    model = freewake.FreeWakeModel()
+    zero = freewake.FreeWakeSolution((placement,), BEDDOES, model,
+                                     np.zeros_like(freewake._node_table(placement, BEDDOES, model))[None], 0, np.array([]))
+    beddoes = wake.wake_table(placement.state, BEDDOES, psi, motion)
+    free = wake.wake_table(placement.state, BEDDOES, psi, motion, snapshot=lambda p: freewake.wake_snapshot(zero, "demo", p))
+    assert list(free.columns) == list(wake.WAKE_COLUMNS) and len(free) == len(beddoes)
+    assert np.array_equal(free[["x_h_m", "y_h_m", "z_h_m"]].to_numpy(), beddoes[["x_h_m", "y_h_m", "z_h_m"]].to_numpy())
+
+
+def test_model_from_config():
+    assert freewake.FreeWakeModel.from_config(None) == freewake.FreeWakeModel()
+    assert freewake.FreeWakeModel.from_config({"steps_per_rev": 72}).steps_per_rev == 72
+    with pytest.raises(ValueError, match="unknown field"):
+        freewake.FreeWakeModel.from_config({"steps": 72})
