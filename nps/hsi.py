@@ -326,6 +326,34 @@ def process(
     """
     rotor = HsiRotor.from_trim_row(trim_row)
     ids, time_s, p = _signal_matrix(signals)
+    pos, vel = _comoving_observers(observers, ids, rotor)
+    if intermediate_observer is not None and intermediate_observer not in set(ids.tolist()):
+        raise ValueError(f"intermediate observer {intermediate_observer} is not in the pressure signals")
+    mach_r, distance = radiation_mach(rotor, pos, vel, float(time_s[0]))
+    if np.any(mach_r >= 1.0):
+        bad = int(ids[np.argmax(mach_r)])
+        raise ValueError(f"rotor {rotor.name}: observer {bad} sees M_r = {mach_r.max():.3f} >= 1; HSI model needs M_r < 1")
+    p_hsi, n_shocks = process_signals(time_s, p, mach_r, distance, rotor)
+    diagnostics = pd.DataFrame(
+        {
+            "observer": ids,
+            "mach_r": mach_r,
+            "radiation_distance_m": distance,
+            "amplification": amplification(mach_r),
+            "shear_angle_rad": shear_angle_rad(mach_r),
+            "n_shocks": n_shocks.astype(np.int32),
+        }
+    )
+    inter = None
+    if intermediate_observer is not None:
+        o = int(np.nonzero(ids == intermediate_observer)[0][0])
+        inter = _intermediate(int(intermediate_observer), time_s, p[o], p_hsi[o], mach_r[o], distance[o], rotor)
+    return HsiResult(_signal_table(ids, time_s, p_hsi, "hsi"), diagnostics, inter)
+
+
+def _comoving_observers(observers: pd.DataFrame, ids: np.ndarray, rotor: HsiRotor) -> tuple[np.ndarray, np.ndarray]:
+    """(positions (n, 3) m, velocities (n, 3) m/s) in G of the observers ``ids`` (in that order);
+    errors for missing columns or rows and for observers not moving with the aircraft."""
     missing = [c for c in OBSERVER_COLUMNS if c not in observers.columns]
     if missing:
         raise ValueError(f"observers: missing column(s) {missing}; expected {list(OBSERVER_COLUMNS)}")
@@ -343,52 +371,36 @@ def process(
             f"observers: observer {bad} velocity {vel[np.argmax(off)]} m/s differs from the aircraft velocity "
             f"{rotor.motion.velocity_mps} m/s; the HSI stage needs observers moving with the aircraft (periodic signals)"
         )
-    if intermediate_observer is not None and intermediate_observer not in set(ids.tolist()):
-        raise ValueError(f"intermediate observer {intermediate_observer} is not in the pressure signals")
-    mach_r, distance = radiation_mach(rotor, pos, vel, float(time_s[0]))
-    if np.any(mach_r >= 1.0):
-        bad = int(ids[np.argmax(mach_r)])
-        raise ValueError(f"rotor {rotor.name}: observer {bad} sees M_r = {mach_r.max():.3f} >= 1; HSI model needs M_r < 1")
-    p_hsi, n_shocks = process_signals(time_s, p, mach_r, distance, rotor)
+    return pos, vel
+
+
+def _intermediate(observer: int, time_s, p_pa, p_hsi_pa, mach_r: float, distance_m: float,
+                  rotor: HsiRotor) -> HsiIntermediate:
+    """The steps of one observer's processing (signal p_pa (N,) Pa on the grid time_s (N,) s)."""
+    amp = float(amplification(mach_r))
+    p_amp = p_pa * amp
+    t_sheared = time_s - shear_delay_s(p_amp, mach_r, distance_m, rotor)
+    return HsiIntermediate(
+        observer=observer,
+        mach_r=float(mach_r),
+        distance_m=float(distance_m),
+        amplification=amp,
+        shear_angle_rad=float(shear_angle_rad(mach_r)),
+        time_s=time_s,
+        p_original_pa=p_pa,
+        p_amplified_pa=p_amp,
+        time_sheared_s=t_sheared,
+        fitted=fit_shocks(t_sheared, p_amp, _grid_period(time_s)),
+        p_final_pa=p_hsi_pa,
+    )
+
+
+def _signal_table(ids: np.ndarray, time_s: np.ndarray, p_pa: np.ndarray, group: str) -> pd.DataFrame:
+    """Signal table (observer, group, time_s, p_Pa) of p_pa (n_obs, N) Pa for observers ``ids``."""
     n = time_s.size
-    table = pd.DataFrame(
-        {
-            "observer": np.repeat(ids, n).astype(np.int32),
-            "group": "hsi",
-            "time_s": np.tile(time_s, ids.size),
-            "p_Pa": p_hsi.ravel(),
-        }
+    return pd.DataFrame(
+        {"observer": np.repeat(ids, n).astype(np.int32), "group": group, "time_s": np.tile(time_s, ids.size), "p_Pa": p_pa.ravel()}
     )
-    diagnostics = pd.DataFrame(
-        {
-            "observer": ids,
-            "mach_r": mach_r,
-            "radiation_distance_m": distance,
-            "amplification": amplification(mach_r),
-            "shear_angle_rad": shear_angle_rad(mach_r),
-            "n_shocks": n_shocks.astype(np.int32),
-        }
-    )
-    inter = None
-    if intermediate_observer is not None:
-        o = int(np.nonzero(ids == intermediate_observer)[0][0])
-        amp = float(amplification(mach_r[o]))
-        p_amp = p[o] * amp
-        t_sheared = time_s - shear_delay_s(p_amp, mach_r[o], distance[o], rotor)
-        inter = HsiIntermediate(
-            observer=int(intermediate_observer),
-            mach_r=float(mach_r[o]),
-            distance_m=float(distance[o]),
-            amplification=amp,
-            shear_angle_rad=float(shear_angle_rad(mach_r[o])),
-            time_s=time_s,
-            p_original_pa=p[o],
-            p_amplified_pa=p_amp,
-            time_sheared_s=t_sheared,
-            fitted=fit_shocks(t_sheared, p_amp, _grid_period(time_s)),
-            p_final_pa=p_hsi[o],
-        )
-    return HsiResult(table, diagnostics, inter)
 
 
 def combine_rotors(tables: Sequence[pd.DataFrame], group: str = "hsi") -> pd.DataFrame:
@@ -409,7 +421,4 @@ def combine_rotors(tables: Sequence[pd.DataFrame], group: str = "hsi") -> pd.Dat
             raise ValueError(f"combine_rotors: table {k} has other observers or another time grid than table 0")
         else:
             total = total + p
-    n = time0.size
-    return pd.DataFrame(
-        {"observer": np.repeat(ids0, n).astype(np.int32), "group": group, "time_s": np.tile(time0, ids0.size), "p_Pa": total.ravel()}
-    )
+    return _signal_table(ids0, time0, total, group)
