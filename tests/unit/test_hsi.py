@@ -254,3 +254,16 @@ def test_cli_writes_hsi_table_diagnostics_intermediate_and_figure(tmp_path):
     assert (tmp_path / "fig.png").stat().st_size > 0
     with pytest.raises(SystemExit, match="expected one row for rotor 'tail'"):
         main(args[:7] + ["tail"] + args[8:10])
+
+
+def test_hsi_and_its_figures_import_without_numba():
+    """Summing or plotting HSI signals (hsi_figure job) does not pay numba's import and kernel loading:
+    nps.hsi loads nps.hsi_kernels only when a kernel runs."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    code = "import sys, nps.hsi, nps.plots.hsi; print(sorted(m for m in ('numba', 'nps.hsi_kernels') if m in sys.modules))"
+    repo = Path(__file__).resolve().parents[2]
+    out = subprocess.run([sys.executable, "-c", code], cwd=repo, capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"
