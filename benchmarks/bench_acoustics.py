@@ -17,7 +17,8 @@ import numba
 import numpy as np
 import pandas as pd
 
-from nps.acoustics import Observers, TimeGrid, radiate_arrays, radiate_rotor
+from nps.acoustics import Observers, TimeGrid, radiate_arrays
+from nps.sources import radiate_rotor
 from nps.observers import hemisphere
 from nps.rotor import RotorMotion
 from nps.sources import ThicknessModel, rotor_sources

@@ -1,7 +1,7 @@
 """Command line: ``python -m nps <stage> [options]`` (``python -m nps <stage> --help``).
 
-Every stage of the workflow is usable on its own; each lives in ``nps/cli/<stage>.py`` with a
-``main(argv) -> int`` function.
+Every stage of the workflow is usable on its own: ``nps/cli/<stage>.py`` parses the options
+(``main(argv) -> int``) and runs ``nps.stages.<stage>.run``, the function the workflow runs.
 """
 
 from __future__ import annotations

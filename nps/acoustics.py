@@ -51,15 +51,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numba as nb
 import numpy as np
-import pandas as pd
+
+from nps.jit import kernel, prange
 
 C0_MPS = 340.294
 RHO0_KG_M3 = 1.225
 THICKNESS = "thickness"
 LOADING = "loading"
-TOTAL = "total"
 
 
 class AcousticsError(ValueError):
@@ -156,7 +155,7 @@ N_Q = 21
 OBSERVER_BLOCK = 16
 
 
-@nb.njit(cache=True, inline="always", error_model="numpy")
+@kernel(inline=True)
 def _reception(y0, y1, y2, xo0, xo1, xo2, vo0, vo1, vo2, tau, c0, inv_a):
     """Closed-form reception for an observer x(t) = xo + vo t and an emission (y, τ).
 
@@ -172,7 +171,7 @@ def _reception(y0, y1, y2, xo0, xo1, xo2, vo0, vo1, vo2, tau, c0, inv_a):
     return tau + s, s, d0 + vo0 * s, d1 + vo1 * s, d2 + vo2 * s
 
 
-@nb.njit(cache=True, inline="always", error_model="numpy")
+@kernel(inline=True)
 def _monopole(s, r0, r1, r2, v0, v1, v2, a0, a1, a2, j0, j1, j2, m2, c0):
     """Compact monopole W d/dτ[W d/dτ(W/r)] per unit ρ0V (×4π), W = 1/(1 − M_r).
 
@@ -207,7 +206,7 @@ def _monopole(s, r0, r1, r2, v0, v1, v2, a0, a1, a2, j0, j1, j2, m2, c0):
     return w * (wd * gd + w * gdd)
 
 
-@nb.njit(cache=True, error_model="numpy")
+@kernel
 def _emit(row, col, obs, n_b, tb, pa, pb, monopole, c0, rho0_vol):
     """Reception time and 4π × pressure of one source row at the n_b observers of a block.
 
@@ -248,7 +247,7 @@ def _emit(row, col, obs, n_b, tb, pa, pb, monopole, c0, rho0_vol):
             pb_row[b] = rho0_vol * _monopole(s, r0, r1, r2, v0, v1, v2, a0, a1, a2, j0, j1, j2, m2, c0)
 
 
-@nb.njit(cache=True, error_model="numpy")
+@kernel
 def _divided_differences(tb, p, lo, hi, n_b, d1, d2, d3):
     """Newton divided differences of the samples (tb[j], p[j]), j = lo…hi−1, for n_b observers.
 
@@ -269,7 +268,7 @@ def _divided_differences(tb, p, lo, hi, n_b, d1, d2, d3):
             out[b] = (e1[b] - e0[b]) / (t3[b] - t0[b])
 
 
-@nb.njit(cache=True, error_model="numpy")
+@kernel
 def _interpolate_add(tb, p, d1, d2, d3, b, lo, hi, base, dt, count, row, off):
     """Add the cubic interpolant of (tb[:, b], p[:, b]), samples lo…hi−1, to ``row``.
 
@@ -301,14 +300,14 @@ def _interpolate_add(tb, p, d1, d2, d3, b, lo, hi, base, dt, count, row, off):
             t = base + q * dt
 
 
-@nb.njit(cache=True, parallel=True)
+@kernel(parallel=True)
 def _coverage(pos, tau, xo, vo, c0):
     """Per observer: [latest first reception, earliest last reception] over all nodes (s)."""
     n_obs = xo.shape[0]
     n_node = pos.shape[0]
     last = pos.shape[1] - 1
     out = np.empty((n_obs, 2))
-    for o in nb.prange(n_obs):
+    for o in prange(n_obs):
         inv_a = 1.0 / (c0 * c0 - (vo[o, 0] ** 2 + vo[o, 1] ** 2 + vo[o, 2] ** 2))
         lo = -np.inf
         hi = np.inf
@@ -322,13 +321,86 @@ def _coverage(pos, tau, xo, vo, c0):
     return out
 
 
-@nb.njit(cache=True, parallel=True, error_model="numpy")
-def _radiate_kernel(src, vol, gdip, gmono, n_groups, xo, vo, c0, rho0, t_first, dt, n_out, period):
-    """Pressure (n_obs, n_groups, n_out) of all nodes at every observer.
+@kernel
+def _observer_block(xo, vo, o_first, n_b, c0):
+    """The block's observers as rows (7, OBSERVER_BLOCK): x, y, z, vx, vy, vz (G, m and m/s) and
+    1/(c0² − v_o²) (s²/m²), for the n_b observers from index ``o_first`` of xo, vo (n_obs, 3)."""
+    obs = np.zeros((7, OBSERVER_BLOCK))
+    for b in range(n_b):
+        for c in range(3):
+            obs[c, b] = xo[o_first + b, c]
+            obs[3 + c, b] = vo[o_first + b, c]
+        obs[6, b] = 1.0 / (c0 * c0 - (obs[3, b] ** 2 + obs[4, b] ** 2 + obs[5, b] ** 2))
+    return obs
 
-    ``src``: packed sources (n_node, n_tau, N_Q), see :func:`_pack_sources`. period <= 0: direct
-    mode, targets t_first + k·dt, F1A evaluated only on the source steps the window needs.
-    period > 0: the samples are one period and the output is that periodic signal at
+
+@kernel
+def _direct_window(node, obs, n_b, c0, t_first, t_end, pad, tb, lo, hi):
+    """Direct mode: reception times tb[j, b] (s) of every source step j of one node (packed rows (n_tau, N_Q))
+    at the block's observers, and per observer the steps [lo[b], hi[b]) whose cubic stencils cover the
+    window [t_first, t_end] (at least 4, ``pad`` extra on each side). Returns the union (j_lo, j_hi)."""
+    n_tau = node.shape[0]
+    for j in range(n_tau):
+        for b in range(n_b):
+            tb[j, b] = _reception(node[j, Q_POS], node[j, Q_POS + 1], node[j, Q_POS + 2], obs[0, b], obs[1, b],
+                                  obs[2, b], obs[3, b], obs[4, b], obs[5, b], node[j, Q_TAU], c0, obs[6, b])[0]
+    j_lo = n_tau
+    j_hi = 0
+    for b in range(n_b):
+        first = 0
+        while first < n_tau - 1 and tb[first + 1, b] <= t_first:
+            first += 1
+        stop = n_tau
+        while stop > first + 1 and tb[stop - 2, b] >= t_end:
+            stop -= 1
+        first = max(first - pad, 0)
+        stop = min(stop + pad, n_tau)
+        if stop - first < 4:
+            first = max(0, min(first, n_tau - 4))
+            stop = first + 4
+        lo[b] = first
+        hi[b] = stop
+        j_lo = min(j_lo, first)
+        j_hi = max(j_hi, stop)
+    return j_lo, j_hi
+
+
+@kernel
+def _periodic_extension(tb, pa, pb, n_tau, pad, n_b, period):
+    """Periodic mode: samples j = pad … pad+n_tau−1 of (tb, pa, pb) (n_ext, block) are one period (s);
+    copy them ``pad`` steps before and ``pad + 1`` after, shifted by ∓period in time."""
+    for q in range(pad):
+        for b in range(n_b):
+            tb[q, b] = tb[n_tau + q, b] - period
+            pa[q, b] = pa[n_tau + q, b]
+            pb[q, b] = pb[n_tau + q, b]
+    for q in range(pad + 1):
+        for b in range(n_b):
+            tb[n_tau + pad + q, b] = tb[pad + q, b] + period
+            pa[n_tau + pad + q, b] = pa[pad + q, b]
+            pb[n_tau + pad + q, b] = pb[pad + q, b]
+
+
+@kernel
+def _fold_block(buf, out, o_first, n_b):
+    """Fold the unwrapped block buffer buf (block, n_groups, 2·n_out) of 4π·p into the output
+    out (n_obs, n_groups, n_out) in Pa: out[o] = (buf[k] + buf[k + n_out]) / 4π."""
+    n_groups, n_out = out.shape[1], out.shape[2]
+    for b in range(n_b):
+        for g in range(n_groups):
+            for k in range(n_out):
+                out[o_first + b, g, k] = (buf[b, g, k] + buf[b, g, k + n_out]) * (1.0 / (4.0 * np.pi))
+
+
+@kernel(parallel=True)
+def _radiate_kernel(src, vol, gdip, gmono, n_groups, xo, vo, c0, rho0, t_first, dt, n_out, period):
+    """Pressure (Pa, shape (n_obs, n_groups, n_out)) of all nodes at every observer.
+
+    ``src``: packed sources (n_node, n_tau, N_Q), see :func:`_pack_sources`; ``vol`` (n_node,) m³;
+    ``gdip``, ``gmono`` (n_node,) output group of each node's dipole / monopole part (−1: none);
+    ``xo``, ``vo`` (n_obs, 3) observer position at t = 0 (m) and velocity (m/s), G; c0 (m/s), rho0 (kg/m³).
+    period <= 0: direct mode, targets t_first + k·dt (s), F1A evaluated only on the source steps the window
+    needs. period > 0: the samples are one period and the output is that periodic signal at
     t_first + k·dt (mod period), dt = period/n_out; the samples are extended periodically by
     two steps on each side so every target has a centred stencil.
 
@@ -343,15 +415,10 @@ def _radiate_kernel(src, vol, gdip, gmono, n_groups, xo, vo, c0, rho0, t_first, 
     n_ext = n_tau + 2 * pad + 1
     t_end = t_first + (n_out - 1) * dt
     n_blocks = (n_obs + OBSERVER_BLOCK - 1) // OBSERVER_BLOCK
-    for blk in nb.prange(n_blocks):
+    for blk in prange(n_blocks):
         o_first = blk * OBSERVER_BLOCK
         n_b = min(OBSERVER_BLOCK, n_obs - o_first)
-        obs = np.zeros((7, OBSERVER_BLOCK))
-        for b in range(n_b):
-            for c in range(3):
-                obs[c, b] = xo[o_first + b, c]
-                obs[3 + c, b] = vo[o_first + b, c]
-            obs[6, b] = 1.0 / (c0 * c0 - (obs[3, b] ** 2 + obs[4, b] ** 2 + obs[5, b] ** 2))
+        obs = _observer_block(xo, vo, o_first, n_b, c0)
         tb = np.empty((n_ext, OBSERVER_BLOCK))
         pa = np.zeros((n_ext, OBSERVER_BLOCK))
         pb = np.zeros((n_ext, OBSERVER_BLOCK))
@@ -373,44 +440,13 @@ def _radiate_kernel(src, vol, gdip, gmono, n_groups, xo, vo, c0, rho0, t_first, 
             gb = max(gmono[i], 0)
             if period <= 0.0:
                 # reception times first (cheap), then F1A only where some observer's window needs it
-                for j in range(n_tau):
-                    for b in range(n_b):
-                        tb[j, b] = _reception(src[i, j, Q_POS], src[i, j, Q_POS + 1], src[i, j, Q_POS + 2], obs[0, b], obs[1, b],
-                                              obs[2, b], obs[3, b], obs[4, b], obs[5, b], src[i, j, Q_TAU], c0, obs[6, b])[0]
-                j_lo = n_tau
-                j_hi = 0
-                for b in range(n_b):
-                    first = 0
-                    while first < n_tau - 1 and tb[first + 1, b] <= t_first:
-                        first += 1
-                    stop = n_tau
-                    while stop > first + 1 and tb[stop - 2, b] >= t_end:
-                        stop -= 1
-                    first = max(first - pad, 0)
-                    stop = min(stop + pad, n_tau)
-                    if stop - first < 4:
-                        first = max(0, min(first, n_tau - 4))
-                        stop = first + 4
-                    lo[b] = first
-                    hi[b] = stop
-                    j_lo = min(j_lo, first)
-                    j_hi = max(j_hi, stop)
+                j_lo, j_hi = _direct_window(src[i], obs, n_b, c0, t_first, t_end, pad, tb, lo, hi)
                 for j in range(j_lo, j_hi):
                     _emit(src[i, j], j, obs, n_b, tb, pa, pb, has_b, c0, rho0 * vol[i])
             else:
                 for j in range(n_tau):
                     _emit(src[i, j], j + pad, obs, n_b, tb, pa, pb, has_b, c0, rho0 * vol[i])
-                # periodic extension: pad samples before and pad + 1 after
-                for q in range(pad):
-                    for b in range(n_b):
-                        tb[q, b] = tb[n_tau + q, b] - period
-                        pa[q, b] = pa[n_tau + q, b]
-                        pb[q, b] = pb[n_tau + q, b]
-                for q in range(pad + 1):
-                    for b in range(n_b):
-                        tb[n_tau + pad + q, b] = tb[pad + q, b] + period
-                        pa[n_tau + pad + q, b] = pa[pad + q, b]
-                        pb[n_tau + pad + q, b] = pb[pad + q, b]
+                _periodic_extension(tb, pa, pb, n_tau, pad, n_b, period)
                 j_lo = 0
                 j_hi = n_ext
                 lo[:] = j_lo
@@ -430,10 +466,7 @@ def _radiate_kernel(src, vol, gdip, gmono, n_groups, xo, vo, c0, rho0, t_first, 
                     _interpolate_add(tb, pa, d1a, d2a, d3a, b, lo[b], hi[b], base, dt, n_out, buf[b, ga], off)
                 if has_b:
                     _interpolate_add(tb, pb, d1b, d2b, d3b, b, lo[b], hi[b], base, dt, n_out, buf[b, gb], off)
-        for b in range(n_b):
-            for g in range(n_groups):
-                for k in range(n_out):
-                    out[o_first + b, g, k] = (buf[b, g, k] + buf[b, g, k + n_out]) * (1.0 / (4.0 * np.pi))
+        _fold_block(buf, out, o_first, n_b)
     return out
 
 
@@ -549,8 +582,6 @@ def fourier_resample(one_period: np.ndarray, period_s: float, grid: TimeGrid, co
 # ----------------------------------------------------------------------------------------------
 # long-format tables (CLI and Python API)
 # ----------------------------------------------------------------------------------------------
-SOURCE_COLUMNS = ("node", "time_s", "x_m", "y_m", "z_m", "fx_N", "fy_N", "fz_N")
-OBSERVER_COLUMNS = ("observer", "x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps")
 
 
 def fd_weights(offsets: np.ndarray, order: int) -> np.ndarray:
@@ -588,150 +619,3 @@ def time_derivative(values: np.ndarray, dt: float, axis: int = 1, points: int = 
             acc += w[q] * values[rows - start_shift + q]
         out[rows] = acc / dt
     return np.moveaxis(out, 0, axis)
-
-
-def _require(df: pd.DataFrame, columns, what: str) -> None:
-    missing = [c for c in columns if c not in df.columns]
-    if missing:
-        raise AcousticsError(f"{what}: missing column(s) {missing}; has {list(df.columns)}")
-    for c in df.columns:
-        if pd.api.types.is_float_dtype(df[c]) and not np.isfinite(df[c].to_numpy()).all():
-            bad = int((~np.isfinite(df[c].to_numpy())).sum())
-            raise AcousticsError(f"{what}: column '{c}' has {bad} NaN/inf value(s)")
-
-
-def sources_from_table(table: pd.DataFrame, what: str = "sources") -> CompactSources:
-    """Long-format source table (module CLI format) → :class:`CompactSources`.
-
-    Velocities from ``vx_mps…`` when present, else 6th-order differences of the positions;
-    accelerations, jerks and force rates by 6th-order differences in source time. The dipole
-    part of a node goes to its ``group`` (default "loading"), its monopole part (``volume_m3``)
-    to "thickness".
-    """
-    _require(table, SOURCE_COLUMNS, what)
-    table = table.sort_values(["node", "time_s"], kind="stable")
-    nodes = table["node"].unique()
-    n_node = nodes.size
-    counts = table.groupby("node", sort=True).size()
-    if (counts != counts.iloc[0]).any():
-        raise AcousticsError(f"{what}: every node needs the same source times; counts differ {counts.to_dict()}")
-    n_tau = int(counts.iloc[0])
-    time = table["time_s"].to_numpy(float).reshape(n_node, n_tau)
-    if not np.allclose(time, time[0][None, :], rtol=0, atol=1e-12 * max(1.0, np.abs(time).max())):
-        raise AcousticsError(f"{what}: 'time_s' must be the same for all nodes")
-    tau = time[0]
-    if n_tau < 7:
-        raise AcousticsError(f"{what}: need at least 7 source times per node, got {n_tau}")
-    step = np.diff(tau)
-    if step[0] <= 0 or not np.allclose(step, step[0], rtol=1e-6, atol=0):
-        raise AcousticsError(f"{what}: 'time_s' must be uniform and increasing (steps {step.min():.6g}…{step.max():.6g} s)")
-    dt = float(step[0])
-
-    def vec(cols):
-        return np.stack([table[c].to_numpy(float).reshape(n_node, n_tau) for c in cols], axis=-1)
-
-    pos = vec(("x_m", "y_m", "z_m"))
-    vel_cols = ("vx_mps", "vy_mps", "vz_mps")
-    if all(c in table.columns for c in vel_cols):
-        vel = vec(vel_cols)
-    elif any(c in table.columns for c in vel_cols):
-        raise AcousticsError(f"{what}: give all of {list(vel_cols)} or none")
-    else:
-        vel = time_derivative(pos, dt)
-    acc = time_derivative(vel, dt)
-    jerk = time_derivative(acc, dt)
-    force = vec(("fx_N", "fy_N", "fz_N"))
-    if "volume_m3" in table.columns:
-        volume = table["volume_m3"].to_numpy(float).reshape(n_node, n_tau)
-        if not np.allclose(volume, volume[:, :1]):
-            raise AcousticsError(f"{what}: 'volume_m3' must be constant in time for each node")
-        volume = volume[:, 0]
-    else:
-        volume = np.zeros(n_node)
-    names = table["group"].astype(str).to_numpy().reshape(n_node, n_tau)[:, 0] if "group" in table.columns else np.full(n_node, LOADING)
-    groups = list(dict.fromkeys(names.tolist()))
-    if (volume != 0).any() and THICKNESS not in groups:
-        groups.append(THICKNESS)
-    if TOTAL in groups:
-        raise AcousticsError(f"{what}: group name '{TOTAL}' is reserved")
-    dip = np.array([groups.index(g) for g in names], dtype=np.int64)
-    dip[np.all(force == 0.0, axis=(1, 2))] = -1
-    mono = np.where(volume != 0, groups.index(THICKNESS) if THICKNESS in groups else -1, -1).astype(np.int64)
-    return CompactSources(tau, pos, vel, acc, jerk, force, time_derivative(force, dt), volume, tuple(groups), dip, mono)
-
-
-def observers_from_table(table: pd.DataFrame, what: str = "observers") -> tuple[np.ndarray, Observers]:
-    """Observer table → (observer ids, :class:`Observers`)."""
-    _require(table, OBSERVER_COLUMNS, what)
-    ids = table["observer"].to_numpy()
-    if len(np.unique(ids)) != len(ids):
-        raise AcousticsError(f"{what}: duplicate observer ids")
-    return ids, Observers(table[["x_m", "y_m", "z_m"]].to_numpy(float), table[["vx_mps", "vy_mps", "vz_mps"]].to_numpy(float))
-
-
-def signals_table(ids: np.ndarray, groups, pressure: np.ndarray, grid: TimeGrid, total: bool = True) -> pd.DataFrame:
-    """Long table ``observer, group, time_s, p_Pa`` from (n_obs, n_groups, n_samples) pressures."""
-    groups = list(groups)
-    if total:
-        pressure = np.concatenate([pressure, pressure.sum(axis=1, keepdims=True)], axis=1)
-        groups = groups + [TOTAL]
-    n_obs, n_grp, n_t = pressure.shape
-    return pd.DataFrame({
-        "observer": np.repeat(np.asarray(ids, dtype=np.int32), n_grp * n_t),
-        "group": pd.Categorical.from_codes(np.tile(np.repeat(np.arange(n_grp), n_t), n_obs), categories=groups),
-        "time_s": np.tile(grid.times_s, n_obs * n_grp),
-        "p_Pa": pressure.reshape(-1),
-    })
-
-
-def radiate(sources: pd.DataFrame, observers: pd.DataFrame, t_start_s: float, duration_s: float, n_samples: int,
-            c0_mps: float = C0_MPS, rho0_kg_m3: float = RHO0_KG_M3) -> pd.DataFrame:
-    """Python equivalent of ``python -m nps acoustics`` (long tables in, long table out).
-
-    ``sources``: columns node, [group], time_s, x_m, y_m, z_m (G, m), fx_N, fy_N, fz_N (force on
-    the fluid, N), optional volume_m3, optional vx_mps, vy_mps, vz_mps. ``observers``: observer,
-    x_m, y_m, z_m (position at t = 0), vx_mps, vy_mps, vz_mps. Returns observer, group (each
-    group and "total"), time_s (t_k = t_start_s + k·duration_s/n_samples), p_Pa.
-    """
-    src = sources_from_table(sources)
-    ids, obs = observers_from_table(observers)
-    grid = TimeGrid(float(t_start_s), float(duration_s), int(n_samples))
-    pressure = radiate_arrays(src, obs, grid, c0_mps=c0_mps, rho0_kg_m3=rho0_kg_m3)
-    return signals_table(ids, src.groups, pressure, grid)
-
-
-def _emission_time(x0: np.ndarray, v_obs: np.ndarray, t_s: float, y0: np.ndarray, v_src: np.ndarray, c0: float) -> np.ndarray:
-    """Emission time τ of a point y0 + v_src τ heard at t_s by observers x0 + v_obs t (closed form)."""
-    d = x0 + v_obs * t_s - (y0 + v_src * t_s)
-    dv = d @ v_src
-    a = c0 * c0 - v_src @ v_src
-    return t_s - (dv + np.sqrt(dv * dv + a * np.einsum("ij,ij->i", d, d))) / a
-
-
-def radiate_rotor(disk: pd.DataFrame, trim_row, observers: Observers, grid: TimeGrid, *, thickness=None,
-                  hinge_offset_m: float = 0.0) -> np.ndarray:
-    """Pressure (Pa) of one rotor, shape (n_obs, 2, n_samples), groups (loading, thickness).
-
-    ``disk``: disk table (docs/conventions.md), ``trim_row``: the rotor's ``trim.parquet`` row
-    (kinematics, ρ0 and c0). Observers moving with the aircraft use the periodic one-blade
-    path (exact periodicity and blade symmetry); any other observers get all blades over the
-    source-time span their window needs.
-    """
-    from nps.rotor import RotorMotion
-    from nps.sources import ThicknessModel, rotor_sources
-
-    thickness = ThicknessModel() if thickness is None else thickness
-    motion = RotorMotion.from_trim_row(trim_row)
-    c0 = float(trim_row["speed_of_sound_mps"])
-    rho0 = float(trim_row["density_kg_m3"])
-    kwargs = dict(thickness=thickness, hinge_offset_m=hinge_offset_m, rho0_kg_m3=rho0, c0_mps=c0)
-    if np.allclose(observers.velocity_mps, motion.velocity_mps[None, :], rtol=0.0, atol=1e-9 * c0):
-        sources = rotor_sources(disk, motion, **kwargs)
-    else:
-        reach = float((disk["r_m"] + disk["dr_m"] + disk["chord_m"]).max())
-        margin = 2.0 * reach / (c0 - np.linalg.norm(motion.velocity_mps)) + 8.0 * 2.0 * np.pi / motion.omega_rad_s / disk["psi_rad"].nunique()
-        t_last = grid.t_start_s + (grid.n_samples - 1) * grid.dt_s
-        first = _emission_time(observers.position_m, observers.velocity_mps, grid.t_start_s, motion.hub_position_m, motion.velocity_mps, c0)
-        last = _emission_time(observers.position_m, observers.velocity_mps, t_last, motion.hub_position_m, motion.velocity_mps, c0)
-        sources = rotor_sources(disk, motion, tau_range_s=(first.min() - margin, last.max() + margin), **kwargs)
-    return radiate_arrays(sources, observers, grid, c0_mps=c0, rho0_kg_m3=rho0)

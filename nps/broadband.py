@@ -139,3 +139,23 @@ def observer_geometry(hub_m, axis, observers_m) -> tuple[np.ndarray, np.ndarray]
         raise ValueError("Pegg: an observer coincides with the rotor hub")
     axis = np.asarray(axis, dtype=float)
     return dist, d @ (axis / np.linalg.norm(axis)) / dist
+
+
+# Pegg's method was built on and compared with full-scale helicopter *main* rotors. TM-80200 does
+# not tabulate a validity envelope; NPS states the span of that class of rotors (light to heavy
+# helicopters of the data's era, from R ≈ 4 m / T ≈ 10 kN to R ≈ 12 m / T ≈ 350 kN, tip speeds
+# 180-240 m/s) and warns outside it (docs/models/broadband_metrics.md).
+PEGG_DATA_RANGE = {"radius_m": (4.0, 12.0), "tip_speed_mps": (180.0, 240.0), "thrust_N": (1.0e4, 3.5e5)}
+
+
+def pegg_outside_range(radius_m: float, tip_speed_mps: float, thrust_N: float) -> list[str]:
+    """Messages naming each rotor quantity outside PEGG_DATA_RANGE; an empty list when inside."""
+    values = {"radius_m": radius_m, "tip_speed_mps": tip_speed_mps, "thrust_N": thrust_N}
+    messages = []
+    for name, value in values.items():
+        if not np.isfinite(value):
+            raise ValueError(f"pegg_outside_range: {name} must be finite, got {value}")
+        low, high = PEGG_DATA_RANGE[name]
+        if not low <= value <= high:
+            messages.append(f"{name}={value:g} outside Pegg's helicopter main-rotor range [{low:g}, {high:g}]")
+    return messages

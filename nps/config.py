@@ -1,6 +1,6 @@
 """Configuration files: loading, JSON-schema validation and cross-reference checks.
 
-Schemas live in ``workflow/schemas/`` (config, aircraft, mission). Every problem is reported
+Schemas live in ``nps/schemas/`` (config, aircraft, mission) with the defaults of optional fields. Every problem is reported
 before any computation as a :class:`ConfigError` whose lines read
 ``<file>: <field path>: <what was expected>``.
 """
@@ -15,8 +15,11 @@ from typing import Any, Iterator
 import jsonschema
 import yaml
 
-REPO_ROOT = Path(__file__).resolve().parents[1]
-SCHEMA_DIR = REPO_ROOT / "workflow" / "schemas"
+from nps.airfoils import AirfoilError
+from nps.blade import BladeError
+from nps.rotor import RotorGeometry
+
+SCHEMA_DIR = Path(__file__).resolve().parent / "schemas"
 
 
 class ConfigError(ValueError):
@@ -76,13 +79,26 @@ def _raise(file: str | Path, problems: list[tuple[str, str]]) -> None:
 
 
 def load_schema(name: str) -> dict:
-    """The schema ``workflow/schemas/<name>.schema.yaml``."""
+    """The schema ``nps/schemas/<name>.schema.yaml``."""
     with open(SCHEMA_DIR / f"{name}.schema.yaml") as handle:
         return yaml.safe_load(handle)
 
 
+def schema_default(schema_name: str, field: str) -> Any:
+    """The ``default`` the schema declares for a dotted field path, e.g. ``("config", "resolution.n_psi")``.
+
+    The one source of defaults: the command-line options and the workflow read them from here.
+    """
+    node = load_schema(schema_name)
+    for part in field.split("."):
+        node = node["properties"][part]
+    if "default" not in node:
+        raise KeyError(f"{schema_name} schema: field '{field}' declares no default")
+    return node["default"]
+
+
 def validate(data: Any, schema_name: str, file: str | Path) -> dict:
-    """Validate ``data`` against a schema; fill schema defaults; raise :class:`ConfigError`."""
+    """Validate ``data`` against a schema; raise :class:`ConfigError` listing every problem."""
     if not isinstance(data, dict):
         _raise(file, [("<top level>", f"expected a mapping, got {type(data).__name__}")])
     problems = list(_non_finite(data, []))
@@ -119,6 +135,7 @@ def load_aircraft(path: str | Path) -> dict:
             problems.append((f"{where}.hinge_offset_m", f"expected < radius_m ({rotor['radius_m']})"))
         if math.hypot(*rotor["thrust_axis_body"]) < 1e-9:
             problems.append((f"{where}.thrust_axis_body", "expected a non-zero vector"))
+        problems += _rotor_sections(rotor, where, Path(path).parent)
     if not any(rotor["role"] == "lift" for rotor in data["rotors"]):
         problems.append(("rotors", "expected at least one rotor with role 'lift'"))
     if sum(rotor["role"] == "antitorque" for rotor in data["rotors"]) > 1:
@@ -127,6 +144,49 @@ def load_aircraft(path: str | Path) -> dict:
         problems.append(("name", f"expected the file stem '{Path(path).stem}', got '{data['name']}'"))
     _raise(path, problems)
     return data
+
+
+def _rotor_sections(rotor: dict, where: str, base: Path) -> list[tuple[str, str]]:
+    """Cross checks of one rotor's blade and airfoil tables and control fields.
+
+    Table paths are resolved against ``base`` (the aircraft file's directory) and replaced by
+    absolute paths in ``rotor``; the tables are then read once so that a malformed file or an
+    unknown airfoil name stops here, before any computation.
+    """
+    problems = []
+    if "blade" in rotor:
+        for key in ("chord_m", "twist_deg", "thickness_ratio"):
+            if key in rotor:
+                problems.append((f"{where}.{key}", "expected no linear-blade field next to a blade table (the table gives it)"))
+    holders = [("airfoil", rotor.get("airfoil", {}))]
+    holders += [(f"airfoils.{name}", foil) for name, foil in rotor.get("airfoils", {}).items()]
+    for field, foil in holders:
+        if "table" in foil:
+            extra = sorted(set(foil) - {"table", "extrapolation", "reynolds"})
+            if extra:
+                problems.append((f"{where}.{field}.{extra[0]}", "expected no linear-model parameter next to a table"))
+        else:
+            for key in ("extrapolation", "reynolds"):
+                if key in foil:
+                    problems.append((f"{where}.{field}.{key}", "applies to a table only; expected a table"))
+    mode = rotor.get("control", "collective")
+    if mode == "collective" and "pitch_deg" in rotor:
+        problems.append((f"{where}.pitch_deg", "expected no pitch_deg with control 'collective' (the trim sets the pitch)"))
+    if mode != "collective" and "pitch_deg" not in rotor:
+        problems.append((f"{where}.pitch_deg", f"required with control '{mode}'"))
+    for field, holder in holders + [("blade", rotor.get("blade", {}))]:
+        if "table" in holder:
+            table = base / holder["table"]
+            if not table.is_file():
+                problems.append((f"{where}.{field}.table", f"file not found: {table}"))
+            else:
+                holder["table"] = str(table.resolve())
+    if not problems:
+        try:
+            RotorGeometry.from_config(rotor)
+        except (AirfoilError, BladeError) as exc:
+            problems.append((where, str(exc)))
+    return problems
 
 
 def aircraft_rotor(aircraft: dict, name: str, path: str | Path) -> dict:
@@ -177,6 +237,62 @@ class Campaign:
     def rotor_names(self, aircraft: str) -> list[str]:
         return [r["name"] for r in self.aircraft[aircraft]["rotors"]]
 
+    # Optional segment lists of the config default to every campaign segment (schema descriptions);
+    # these methods are the one place that applies those defaults.
+    def _listed(self, listed: list[str] | None) -> list[str]:
+        return [s for s in self.segments if listed is None or s in listed]
+
+    def observer_sets(self, segment: str) -> list[str]:
+        """Observer sets used in ``segment`` (``observer_sets.<name>.segments``, default all)."""
+        return [name for name, spec in self.config["observer_sets"].items() if segment in self._listed(spec.get("segments"))]
+
+    def bvi_segments(self) -> list[str]:
+        """Segments with the wake and BVI loads (``models.bvi_segments``, default all; none when ``models.bvi`` is off)."""
+        models = self.config["models"]
+        return self._listed(models.get("bvi_segments")) if models["bvi"] else []
+
+    def hsi_segments(self) -> list[str]:
+        """Segments with the HSI post-processing (``models.hsi_segments``, default all; none when ``models.hsi`` is off)."""
+        models = self.config["models"]
+        return self._listed(models.get("hsi_segments")) if models["hsi"] else []
+
+    def variants(self, segment: str) -> list[str]:
+        """Load variants radiated in ``segment``: the trimmed loads ("base") and/or the BVI loads ("bvi").
+
+        Outside the BVI segments only "base"; in a BVI segment "bvi", preceded by "base" where the
+        comparison without BVI is asked for (``models.without_bvi_segments``, default every BVI segment).
+        """
+        bvi = self.bvi_segments()
+        if segment not in bvi:
+            return ["base"]
+        without = self.config["models"].get("without_bvi_segments")
+        return ["base", "bvi"] if without is None or segment in without else ["bvi"]
+
+    def figure_segments(self, kind: str) -> list[str]:
+        """Campaign segments listed for a figure family (``figures.<kind>_segments``)."""
+        return self._listed(self.config["figures"][f"{kind}_segments"])
+
+
+def _footprint_problems(config: dict, mission: dict, all_ids: list[str]) -> list[tuple[str, str]]:
+    """Cross references of the ``footprint`` and ``certification`` sections (docs/footprint.md)."""
+    problems = []
+    footprint = config.get("footprint")
+    if footprint is not None:
+        spec = config["observer_sets"].get(footprint["source_set"])
+        if spec is None or spec["kind"] != "hemisphere" or not spec.get("moving", True):
+            problems.append(("footprint.source_set", f"expected a moving hemisphere of observer_sets, got '{footprint['source_set']}'"))
+        for index, leg in enumerate(mission.get("profile", [])):
+            if leg["segment"] not in all_ids:
+                problems.append((f"mission profile[{index}].segment", f"expected one of {all_ids}, got '{leg['segment']}'"))
+    certification = config.get("certification")
+    if certification is not None:
+        if footprint is None:
+            problems.append(("certification", "needs the footprint section (its source_set and ground)"))
+        for procedure, segment_id in certification["segments"].items():
+            if segment_id not in all_ids:
+                problems.append((f"certification.segments.{procedure}", f"expected one of {all_ids}, got '{segment_id}'"))
+    return problems
+
 
 def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", root: str | Path = ".") -> Campaign:
     """Validate the campaign configuration and every file it names, with cross references."""
@@ -213,6 +329,7 @@ def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", 
         for index, segment_id in enumerate(obs.get("segments", [])):
             if segment_id not in all_ids:
                 problems.append((f"observer_sets.{set_name}.segments[{index}]", f"expected one of {all_ids}, got '{segment_id}'"))
+    problems += _footprint_problems(config, mission, all_ids)
     _raise(config_file, problems)
     for index, segment in enumerate(mission["segments"]):
         if segment["id"] not in segments:

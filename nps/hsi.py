@@ -41,7 +41,7 @@ from typing import Mapping, Sequence
 import numpy as np
 import pandas as pd
 
-from nps.io import signal_arrays
+from nps.signals import signal_arrays
 from nps.rotor import RotorMotion
 
 #: Calibration distance of eq. 6.5 in rotor radii (Baeder et al. in-plane observer, Table 6.1).

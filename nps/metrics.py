@@ -34,7 +34,7 @@ import pandas as pd
 
 from nps import broadband
 from nps.atmosphere import AtmosphereState, absorb_band_levels, apply_line_gain, periodic_absorption_gain
-from nps.io import signal_arrays
+from nps.signals import signal_arrays
 from nps.rotor import RotorGeometry
 from nps.spectra import (
     LEVEL_FLOOR_DB,

@@ -1,6 +1,6 @@
-"""Compact acoustic source lines of a rotor from its disk table and trim row.
+"""Compact acoustic sources for the F1A solver (nps.acoustics): a rotor from its disk table and trim row, or long source tables.
 
-Per blade (docs/conventions.md for frames and signs):
+Rotor sources, per blade (docs/conventions.md for frames and signs):
 
 * the **lifting line** at the pitch axis (quarter chord) carries the force the blade exerts on
   the fluid, −(fx, fz) of the disk table: in the rotating frame (e_r, e_t, z_H), with e_t the
@@ -42,9 +42,13 @@ from typing import Mapping
 import numpy as np
 import pandas as pd
 
-from nps.acoustics import LOADING, THICKNESS, AcousticsError, CompactSources
+from nps.acoustics import (C0_MPS, LOADING, RHO0_KG_M3, THICKNESS, AcousticsError, CompactSources, Observers, TimeGrid,
+                           radiate_arrays, time_derivative)
 from nps.rotor import RotorMotion
+from nps.signals import TOTAL, signals_table
 
+SOURCE_COLUMNS = ("node", "time_s", "x_m", "y_m", "z_m", "fx_N", "fy_N", "fz_N")
+OBSERVER_COLUMNS = ("observer", "x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps")
 DISK_COLUMNS = ("psi_rad", "r_m", "dr_m", "chord_m", "thickness_m", "theta_rad", "beta_rad", "fz_N_per_m", "fx_N_per_m")
 DUAL_COMPACT = "dual_compact"
 COMPACT_MONOPOLE = "compact_monopole"
@@ -233,3 +237,149 @@ def rotor_sources(disk: pd.DataFrame, motion: RotorMotion, *, thickness: Thickne
         frame_velocity_mps=np.asarray(motion.velocity_mps, float) if tau_range_s is None else None,
         copies=n_blades if tau_range_s is None else 1,
     )
+
+
+# ----------------------------------------------------------------------------------------------
+# rotor radiation: disk table + trim row -> compact sources -> F1A solver
+# ----------------------------------------------------------------------------------------------
+def common_grid(reference_trim_row, samples_per_rev: int) -> TimeGrid:
+    """The aircraft's common observer grid: one revolution of the reference rotor from t = 0
+    (blade 0 of every rotor at ψ = 0) with ``samples_per_rev`` samples."""
+    if samples_per_rev < 8:
+        raise AcousticsError(f"samples_per_rev: expected at least 8, got {samples_per_rev}")
+    omega = float(reference_trim_row["omega_rad_s"])
+    if not omega > 0:
+        raise AcousticsError(f"rotor '{reference_trim_row['rotor']}': omega_rad_s must be positive, got {omega}")
+    return TimeGrid(0.0, 2.0 * np.pi / omega, int(samples_per_rev))
+
+
+def _emission_time(x0: np.ndarray, v_obs: np.ndarray, t_s: float, y0: np.ndarray, v_src: np.ndarray, c0: float) -> np.ndarray:
+    """Emission time τ of a point y0 + v_src τ heard at t_s by observers x0 + v_obs t (closed form)."""
+    d = x0 + v_obs * t_s - (y0 + v_src * t_s)
+    dv = d @ v_src
+    a = c0 * c0 - v_src @ v_src
+    return t_s - (dv + np.sqrt(dv * dv + a * np.einsum("ij,ij->i", d, d))) / a
+
+
+def radiate_rotor(disk: pd.DataFrame, trim_row, observers: Observers, grid: TimeGrid, *, thickness=None,
+                  hinge_offset_m: float = 0.0) -> np.ndarray:
+    """Pressure (Pa) of one rotor, shape (n_obs, 2, n_samples), groups (loading, thickness).
+
+    ``disk``: disk table (docs/conventions.md), ``trim_row``: the rotor's ``trim.parquet`` row
+    (kinematics, ρ0 and c0). Observers moving with the aircraft use the periodic one-blade
+    path (exact periodicity and blade symmetry); any other observers get all blades over the
+    source-time span their window needs.
+    """
+    thickness = ThicknessModel() if thickness is None else thickness
+    motion = RotorMotion.from_trim_row(trim_row)
+    c0 = float(trim_row["speed_of_sound_mps"])
+    rho0 = float(trim_row["density_kg_m3"])
+    kwargs = dict(thickness=thickness, hinge_offset_m=hinge_offset_m, rho0_kg_m3=rho0, c0_mps=c0)
+    if np.allclose(observers.velocity_mps, motion.velocity_mps[None, :], rtol=0.0, atol=1e-9 * c0):
+        sources = rotor_sources(disk, motion, **kwargs)
+    else:
+        reach = float((disk["r_m"] + disk["dr_m"] + disk["chord_m"]).max())
+        margin = 2.0 * reach / (c0 - np.linalg.norm(motion.velocity_mps)) + 8.0 * 2.0 * np.pi / motion.omega_rad_s / disk["psi_rad"].nunique()
+        t_last = grid.t_start_s + (grid.n_samples - 1) * grid.dt_s
+        first = _emission_time(observers.position_m, observers.velocity_mps, grid.t_start_s, motion.hub_position_m, motion.velocity_mps, c0)
+        last = _emission_time(observers.position_m, observers.velocity_mps, t_last, motion.hub_position_m, motion.velocity_mps, c0)
+        sources = rotor_sources(disk, motion, tau_range_s=(first.min() - margin, last.max() + margin), **kwargs)
+    return radiate_arrays(sources, observers, grid, c0_mps=c0, rho0_kg_m3=rho0)
+
+
+# ----------------------------------------------------------------------------------------------
+# tabulated sources (``python -m nps radiate``): long source and observer tables
+# ----------------------------------------------------------------------------------------------
+def _require(df: pd.DataFrame, columns, what: str) -> None:
+    missing = [c for c in columns if c not in df.columns]
+    if missing:
+        raise AcousticsError(f"{what}: missing column(s) {missing}; has {list(df.columns)}")
+    for c in df.columns:
+        if pd.api.types.is_float_dtype(df[c]) and not np.isfinite(df[c].to_numpy()).all():
+            bad = int((~np.isfinite(df[c].to_numpy())).sum())
+            raise AcousticsError(f"{what}: column '{c}' has {bad} NaN/inf value(s)")
+
+
+def sources_from_table(table: pd.DataFrame, what: str = "sources") -> CompactSources:
+    """Long-format source table (module CLI format) → :class:`CompactSources`.
+
+    Velocities from ``vx_mps…`` when present, else 6th-order differences of the positions;
+    accelerations, jerks and force rates by 6th-order differences in source time. The dipole
+    part of a node goes to its ``group`` (default "loading"), its monopole part (``volume_m3``)
+    to "thickness".
+    """
+    _require(table, SOURCE_COLUMNS, what)
+    table = table.sort_values(["node", "time_s"], kind="stable")
+    nodes = table["node"].unique()
+    n_node = nodes.size
+    counts = table.groupby("node", sort=True).size()
+    if (counts != counts.iloc[0]).any():
+        raise AcousticsError(f"{what}: every node needs the same source times; counts differ {counts.to_dict()}")
+    n_tau = int(counts.iloc[0])
+    time = table["time_s"].to_numpy(float).reshape(n_node, n_tau)
+    if not np.allclose(time, time[0][None, :], rtol=0, atol=1e-12 * max(1.0, np.abs(time).max())):
+        raise AcousticsError(f"{what}: 'time_s' must be the same for all nodes")
+    tau = time[0]
+    if n_tau < 7:
+        raise AcousticsError(f"{what}: need at least 7 source times per node, got {n_tau}")
+    step = np.diff(tau)
+    if step[0] <= 0 or not np.allclose(step, step[0], rtol=1e-6, atol=0):
+        raise AcousticsError(f"{what}: 'time_s' must be uniform and increasing (steps {step.min():.6g}…{step.max():.6g} s)")
+    dt = float(step[0])
+
+    def vec(cols):
+        return np.stack([table[c].to_numpy(float).reshape(n_node, n_tau) for c in cols], axis=-1)
+
+    pos = vec(("x_m", "y_m", "z_m"))
+    vel_cols = ("vx_mps", "vy_mps", "vz_mps")
+    if all(c in table.columns for c in vel_cols):
+        vel = vec(vel_cols)
+    elif any(c in table.columns for c in vel_cols):
+        raise AcousticsError(f"{what}: give all of {list(vel_cols)} or none")
+    else:
+        vel = time_derivative(pos, dt)
+    acc = time_derivative(vel, dt)
+    jerk = time_derivative(acc, dt)
+    force = vec(("fx_N", "fy_N", "fz_N"))
+    if "volume_m3" in table.columns:
+        volume = table["volume_m3"].to_numpy(float).reshape(n_node, n_tau)
+        if not np.allclose(volume, volume[:, :1]):
+            raise AcousticsError(f"{what}: 'volume_m3' must be constant in time for each node")
+        volume = volume[:, 0]
+    else:
+        volume = np.zeros(n_node)
+    names = table["group"].astype(str).to_numpy().reshape(n_node, n_tau)[:, 0] if "group" in table.columns else np.full(n_node, LOADING)
+    groups = list(dict.fromkeys(names.tolist()))
+    if (volume != 0).any() and THICKNESS not in groups:
+        groups.append(THICKNESS)
+    if TOTAL in groups:
+        raise AcousticsError(f"{what}: group name '{TOTAL}' is reserved")
+    dip = np.array([groups.index(g) for g in names], dtype=np.int64)
+    dip[np.all(force == 0.0, axis=(1, 2))] = -1
+    mono = np.where(volume != 0, groups.index(THICKNESS) if THICKNESS in groups else -1, -1).astype(np.int64)
+    return CompactSources(tau, pos, vel, acc, jerk, force, time_derivative(force, dt), volume, tuple(groups), dip, mono)
+
+
+def observers_from_table(table: pd.DataFrame, what: str = "observers") -> tuple[np.ndarray, Observers]:
+    """Observer table → (observer ids, :class:`Observers`)."""
+    _require(table, OBSERVER_COLUMNS, what)
+    ids = table["observer"].to_numpy()
+    if len(np.unique(ids)) != len(ids):
+        raise AcousticsError(f"{what}: duplicate observer ids")
+    return ids, Observers(table[["x_m", "y_m", "z_m"]].to_numpy(float), table[["vx_mps", "vy_mps", "vz_mps"]].to_numpy(float))
+
+
+def radiate(sources: pd.DataFrame, observers: pd.DataFrame, t_start_s: float, duration_s: float, n_samples: int,
+            c0_mps: float = C0_MPS, rho0_kg_m3: float = RHO0_KG_M3) -> pd.DataFrame:
+    """Python equivalent of ``python -m nps radiate`` (long tables in, long table out).
+
+    ``sources``: columns node, [group], time_s, x_m, y_m, z_m (G, m), fx_N, fy_N, fz_N (force on
+    the fluid, N), optional volume_m3, optional vx_mps, vy_mps, vz_mps. ``observers``: observer,
+    x_m, y_m, z_m (position at t = 0), vx_mps, vy_mps, vz_mps. Returns observer, group (each
+    group and "total"), time_s (t_k = t_start_s + k·duration_s/n_samples), p_Pa.
+    """
+    src = sources_from_table(sources)
+    ids, obs = observers_from_table(observers)
+    grid = TimeGrid(float(t_start_s), float(duration_s), int(n_samples))
+    pressure = radiate_arrays(src, obs, grid, c0_mps=c0_mps, rho0_kg_m3=rho0_kg_m3)
+    return signals_table(ids, src.groups, pressure, grid)

@@ -1,19 +1,18 @@
 """Study summaries: per aircraft × segment, the numbers a designer reads first.
 
 Inputs are the stage artifacts of one aircraft and segment (docs/conventions.md): the trim
-table, the loads summaries, the metrics tables per observer set and variant, and the
-Snakemake benchmark files (wall time of every job).
+table, the loads summaries, the metrics tables per observer set and variant, and the wall time of
+each stage's jobs (read from the workflow's benchmark files by :mod:`nps.stages.study`).
 """
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Mapping
 
 import numpy as np
 import pandas as pd
 
-STAGES = ("trim", "loads", "wake", "observers", "acoustics", "hsi", "metrics")
+STAGES = ("trim", "loads", "wake", "observers", "acoustics", "hsi", "metrics")  # stages whose wall time the summary reports
 
 
 def hotspot(metrics: pd.DataFrame, column: str) -> dict[str, float]:
@@ -30,21 +29,6 @@ def hotspot(metrics: pd.DataFrame, column: str) -> dict[str, float]:
         "azimuth_deg": float(row["azimuth_deg"]),
         "elevation_deg": float(row["elevation_deg"]),
     }
-
-
-def stage_wall_times(benchmark_dir: str | Path, aircraft: str, segment: str) -> dict[str, float]:
-    """Wall time (s) of each stage's jobs for one aircraft and segment, summed over files.
-
-    Reads Snakemake benchmark files ``<benchmark_dir>/<stage>/<aircraft>/<segment>[/…].tsv``
-    (column ``s``); stages without files are absent.
-    """
-    times = {}
-    for stage in STAGES:
-        root = Path(benchmark_dir) / stage / aircraft
-        files = sorted(root.glob(f"{segment}.tsv")) + sorted(root.glob(f"{segment}/**/*.tsv"))
-        if files:
-            times[stage] = float(sum(pd.read_csv(f, sep="\t")["s"].iloc[-1] for f in files))
-    return times
 
 
 def segment_summary(

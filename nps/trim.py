@@ -38,10 +38,33 @@ import pandas as pd
 
 from nps import frames
 from nps.atmosphere import AtmosphereState
+from nps.rotor import RotorGeometry
 
 G0_M_S2 = 9.80665
 INDUCED_POWER_FACTOR = 1.15
 TRIM_TOLERANCE = 1e-12  # residual, as a fraction of the weight (forces) or weight x radius (moments)
+
+
+# The trim artifact (``trim.parquet``): one row per rotor, these columns (docs/conventions.md).
+TRIM_COLUMNS = (
+    "rotor", "role", "rotation_sign", "n_blades", "radius_m", "omega_rad_s", "thrust_N", "roll_moment_Nm",
+    "pitch_moment_Nm", "torque_Nm", "power_W", "mu_x", "mu_y", "mu_z", "lambda_i", "ct", "tip_mach",
+    "hub_x_m", "hub_y_m", "hub_z_m", "vel_x_mps", "vel_y_mps", "vel_z_mps",
+    *(f"r_gh_{i}{j}" for i in range(3) for j in range(3)),
+    "density_kg_m3", "speed_of_sound_mps", "pitch_rad", "roll_rad", "flight_path_rad", "trim_iterations",
+)
+
+
+def trim_row(trim: pd.DataFrame, rotor: str, what: str = "trim.parquet") -> dict:
+    """The row of ``rotor`` in a trim table, as a dict (the one accessor every stage uses).
+
+    Raises ValueError naming ``what`` when the rotor has not exactly one row. (Stages read trim
+    artifacts with ``read_table(path, required=TRIM_COLUMNS)``, which names missing columns.)
+    """
+    rows = trim[trim["rotor"] == rotor]
+    if len(rows) != 1:
+        raise ValueError(f"{what}: expected one row for rotor '{rotor}', found {len(rows)}; rotors: {list(trim['rotor'])}")
+    return rows.iloc[0].to_dict()
 
 
 class AircraftTrimError(RuntimeError):
@@ -105,6 +128,7 @@ class _RotorState:
     omega_rad_s: float
     axis_b: np.ndarray
     r_bh: np.ndarray
+    geometry: RotorGeometry
 
     @property
     def radius_m(self) -> float:
@@ -129,8 +153,8 @@ def _rotor_aero(state: _RotorState, thrust_n: float, r_gb: np.ndarray, flight: F
     ct = thrust_n / (rho * area * tip_speed**2)
     mu = float(np.hypot(mu_x, mu_y))
     lam_i = glauert_inflow(ct, mu, mu_z)
-    solidity = rotor["n_blades"] * rotor["chord_m"] / (np.pi * radius)
-    cd0 = rotor.get("airfoil", {}).get("cd0", 0.008)
+    solidity = state.geometry.solidity
+    cd0 = state.geometry.airfoil.cd0
     power = thrust_n * tip_speed * (INDUCED_POWER_FACTOR * lam_i + mu_z)
     power += rho * area * tip_speed**3 * solidity * cd0 * (1.0 + 4.65 * mu * mu) / 8.0
     return {
@@ -173,7 +197,8 @@ def trim_aircraft(aircraft: dict, flight: FlightCondition, omega_scale: dict[str
     for rotor in aircraft["rotors"]:
         axis_b = np.asarray(rotor["thrust_axis_body"], dtype=float)
         axis_b = axis_b / np.linalg.norm(axis_b)
-        states.append(_RotorState(rotor, rotor["omega_rad_s"] * omega_scale.get(rotor["name"], 1.0), axis_b, frames.hub_to_body(axis_b)))
+        states.append(_RotorState(rotor, rotor["omega_rad_s"] * omega_scale.get(rotor["name"], 1.0), axis_b, frames.hub_to_body(axis_b),
+                                  RotorGeometry.from_config(rotor)))
     weight = aircraft["gross_weight_kg"] * G0_M_S2
     length = max(s.radius_m for s in states)
     moments = _layout_moments(aircraft)

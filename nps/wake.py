@@ -523,3 +523,10 @@ def blade_lines_hub(state: WakeState, psi_blade_rad: float, root_cutout_m: float
     beta = np.interp(psi_k % (2.0 * np.pi), state.psi_table_rad, state.beta_table_rad, period=2.0 * np.pi)
     r = np.linspace(root_cutout_m, state.radius_m, n_points)
     return to_hub_frame(blade_points(psi_k, r, beta[:, None]), state.rotation_sign)
+
+
+def snapshot_azimuths(n_blades: int, step_deg: float) -> np.ndarray:
+    """Blade-0 azimuths (rad) covering one blade passage [0, 2π/B) every ``step_deg`` (the wake is periodic in 2π/B)."""
+    if not step_deg > 0.0:
+        raise ValueError(f"snapshot step: expected > 0 deg, got {step_deg}")
+    return np.radians(np.arange(0.0, 360.0 / n_blades - 1e-9, step_deg))

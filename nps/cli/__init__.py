@@ -1,1 +1,61 @@
-"""Stand-alone command-line entry points, one module per stage (``python -m nps <stage>``)."""
+"""Command-line entry points, one module per stage (``python -m nps <stage>``): argument parsing only.
+
+Each module builds the stage's ``inputs``, ``outputs`` and ``params`` from its options (defaults read
+from the configuration schemas, :func:`nps.config.schema_default`) and calls the same
+``nps.stages.<stage>.run`` the workflow runs. :func:`run_stage` prints the stage's report, and turns
+every expected error (bad file, bad field, bad value) into one line on stderr and exit status 2;
+``--debug`` shows the traceback instead.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from nps.config import schema_default
+
+
+def parser(stage: str, description: str) -> argparse.ArgumentParser:
+    """Argument parser of ``python -m nps <stage>`` with the common ``--debug`` option."""
+    ap = argparse.ArgumentParser(prog=f"python -m nps {stage}", description=description,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--debug", action="store_true", help="show the traceback of an error")
+    return ap
+
+
+def default(field: str):
+    """Default of a campaign-configuration field (``config`` schema), e.g. ``resolution.n_psi``."""
+    return schema_default("config", field)
+
+
+def run_stage(stage: str, inputs: dict, outputs: dict, params: dict, debug: bool = False) -> int:
+    """Run ``nps.stages.<stage>.run``; print its report; expected errors → one line and exit status 2."""
+    from nps.stages import stage_function
+
+    try:
+        report = stage_function(stage)(inputs, outputs, params)
+    except (ValueError, KeyError, OSError) as error:
+        if debug:
+            raise
+        message = error.args[0] if isinstance(error, KeyError) and error.args else error
+        print(f"error: {message}", file=sys.stderr)
+        return 2
+    print(report)
+    return 0
+
+
+def fail(message: str) -> int:
+    """One-line error for a problem found while reading the options (exit status 2)."""
+    print(f"error: {message}", file=sys.stderr)
+    return 2
+
+
+def provenance(path: str, key: str) -> str:
+    """The ``nps.<key>`` metadata of an input artifact (e.g. its segment), "" when absent or unreadable
+    (the stage then reports the unreadable file itself)."""
+    from nps.io import read_metadata
+
+    try:
+        return str(read_metadata(path).get(key, ""))
+    except Exception:  # missing or not a Parquet file: the stage's own read names the problem
+        return ""

@@ -1,56 +1,41 @@
-"""``python -m nps acoustics``: compact F1A pressure signals of tabulated sources at observers.
+"""``python -m nps acoustics``: pressure signals of every rotor of an aircraft at one observer set
+(stage nps.stages.acoustics, compact Farassat 1A).
 
-Sources (Parquet or CSV, long format, one row per node × source time): node, [group], time_s
-(uniform, the same for all nodes), x_m, y_m, z_m (ground frame), fx_N, fy_N, fz_N (force on the
-fluid), optional volume_m3 (compact thickness monopole), optional vx_mps, vy_mps, vz_mps.
-Observers: observer, x_m, y_m, z_m (position at t = 0), vx_mps, vy_mps, vz_mps.
-Output: observer, group (each group and "total"), time_s (t_k = T0 + k·D/N), p_Pa.
+Reads a directory of disk tables (``loads/`` or ``bvi/``: ``{rotor}.parquet``), the trim artifact and an
+observer table; writes ``{rotor}.parquet`` signal tables (observer, group, time_s, p_Pa) on the
+aircraft's common grid (one revolution of the first rotor) into ``--out-dir``.
 """
 
 from __future__ import annotations
 
-import argparse
-import sys
-from pathlib import Path
-
-import pandas as pd
-
-from nps.acoustics import C0_MPS, RHO0_KG_M3, AcousticsError, radiate
-from nps.io import ArtifactError, read_table, write_table
-
-
-def _read(path: str) -> pd.DataFrame:
-    if Path(path).suffix.lower() == ".csv":
-        if not Path(path).exists():
-            raise ArtifactError(f"{path}: file not found")
-        return pd.read_csv(path)
-    return read_table(path)
+from nps.cli import default, fail, parser, provenance, run_stage
+from nps.config import ConfigError, aircraft_rotor, load_aircraft
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="python -m nps acoustics", description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--sources", required=True, help="source table (.parquet or .csv)")
-    parser.add_argument("--observers", required=True, help="observer table (.parquet or .csv)")
-    parser.add_argument("--t-start", type=float, required=True, help="first observer time T0 (s)")
-    parser.add_argument("--duration", type=float, required=True, help="window length D (s)")
-    parser.add_argument("--samples", type=int, required=True, help="number of observer samples N")
-    parser.add_argument("--c0", type=float, default=C0_MPS, help=f"speed of sound (m/s), default {C0_MPS}")
-    parser.add_argument("--rho0", type=float, default=RHO0_KG_M3, help=f"density (kg/m^3), default {RHO0_KG_M3}")
-    parser.add_argument("--out", required=True, help="output Parquet")
-    args = parser.parse_args(argv)
+    ap = parser("acoustics", __doc__)
+    ap.add_argument("--aircraft", required=True, help="aircraft YAML: hinge offsets, reference (first) rotor")
+    ap.add_argument("--disks", required=True, help="directory of disk tables (results/.../loads or .../bvi)")
+    ap.add_argument("--trim", required=True, help="aircraft trim artifact (results/.../trim.parquet)")
+    ap.add_argument("--observers", required=True, help="observer table (results/.../observers/SET.parquet)")
+    ap.add_argument("--rotor", nargs="+", help="rotor names (default: every rotor); the first one listed sets the time grid")
+    ap.add_argument("--samples-per-rev", type=int, default=default("resolution.samples_per_rev"),
+                    help="samples per reference-rotor revolution (default %(default)s)")
+    ap.add_argument("--thickness", default=default("models.thickness"), help="dual_compact or compact_monopole")
+    ap.add_argument("--chord-fractions", type=float, nargs=2, default=default("acoustics.dual_compact_chord_fractions"),
+                    metavar=("FRONT", "REAR"), help="dual-compact line positions from the leading edge (fractions of chord)")
+    ap.add_argument("--variant", default="base", help="load variant named in the metadata (base or bvi)")
+    ap.add_argument("--out-dir", required=True, help="output directory of the per-rotor signal tables")
+    args = ap.parse_args(argv)
     try:
-        if not (args.c0 > 0 and args.rho0 > 0 and args.duration > 0 and args.samples > 0):
-            raise AcousticsError("--c0, --rho0, --duration and --samples must be positive")
-        sources = _read(args.sources)
-        observers = _read(args.observers)
-        try:
-            table = radiate(sources, observers, args.t_start, args.duration, args.samples, args.c0, args.rho0)
-        except AcousticsError as exc:
-            raise AcousticsError(f"{args.sources} / {args.observers}: {exc}") from None
-    except (AcousticsError, ArtifactError) as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 1
-    write_table(table, args.out, stage="acoustics",
-                metadata={"sources": str(args.sources), "observers": str(args.observers), "c0_mps": args.c0, "rho0_kg_m3": args.rho0})
-    return 0
+        aircraft = load_aircraft(args.aircraft)
+        names = args.rotor or [r["name"] for r in aircraft["rotors"]]
+        hinges = {n: float(aircraft_rotor(aircraft, n, args.aircraft).get("hinge_offset_m", 0.0)) for n in names}
+    except ConfigError as error:
+        return fail(str(error))
+    params = {"rotors": names, "hinge_offsets_m": hinges, "thickness": args.thickness, "chord_fractions": args.chord_fractions,
+              "samples_per_rev": args.samples_per_rev, "aircraft": aircraft["name"],
+              "segment": provenance(args.trim, "segment"), "obsset": provenance(args.observers, "obsset"),
+              "variant": args.variant}
+    inputs = {"disks": args.disks, "trim": args.trim, "observers": args.observers}
+    return run_stage("acoustics", inputs, {"signals": args.out_dir}, params, args.debug)

@@ -1,39 +1,33 @@
-"""``python -m nps trim``: aircraft trim for one aircraft and one mission segment."""
+"""``python -m nps trim``: aircraft trim of one aircraft in one mission segment (stage nps.stages.trim)."""
 
 from __future__ import annotations
 
-import argparse
-import sys
-
-from nps.atmosphere import isa
+from nps.cli import default, fail, parser, run_stage
 from nps.config import ConfigError, load_aircraft, load_mission
-from nps.io import write_table
-from nps.trim import AircraftTrimError, FlightCondition, trim_aircraft
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="python -m nps trim", description=__doc__)
-    parser.add_argument("--aircraft", required=True, help="aircraft YAML (config/aircraft/NAME.yaml)")
-    parser.add_argument("--mission", required=True, help="mission YAML (config/missions/NAME.yaml)")
-    parser.add_argument("--segment", required=True, help="segment id, e.g. seg3")
-    parser.add_argument("--altitude-m", type=float, default=0.0)
-    parser.add_argument("--isa-delta-k", type=float, default=0.0)
-    parser.add_argument("--out", required=True, help="output Parquet (one row per rotor)")
-    args = parser.parse_args(argv)
+    ap = parser("trim", __doc__)
+    ap.add_argument("--aircraft", required=True, help="aircraft YAML (config/aircraft/NAME.yaml)")
+    ap.add_argument("--mission", required=True, help="mission YAML (config/missions/NAME.yaml)")
+    ap.add_argument("--segment", required=True, help="segment id, e.g. seg3")
+    ap.add_argument("--altitude-m", type=float, default=default("atmosphere.altitude_m"))
+    ap.add_argument("--isa-delta-k", type=float, default=default("atmosphere.isa_delta_K"))
+    ap.add_argument("--relative-humidity-pct", type=float, default=default("atmosphere.relative_humidity_pct"))
+    ap.add_argument("--out", required=True, help="output Parquet (one row per rotor)")
+    args = ap.parse_args(argv)
     try:
         aircraft = load_aircraft(args.aircraft)
         mission = load_mission(args.mission)
-        segment = next((s for s in mission["segments"] if s["id"] == args.segment), None)
-        if segment is None:
-            raise ConfigError(f"{args.mission}: segments: no segment '{args.segment}'")
-        if aircraft["name"] not in segment["aircraft"]:
-            raise ConfigError(f"{args.mission}: segments.{args.segment}.aircraft: no speeds for '{aircraft['name']}'")
-        speeds = segment["aircraft"][aircraft["name"]]
-        flight = FlightCondition(speeds["forward_speed_mps"], speeds["climb_speed_mps"], isa(args.altitude_m, args.isa_delta_k))
-        table = trim_aircraft(aircraft, flight, speeds.get("rotor_omega_scale"))
-    except (ConfigError, AircraftTrimError, ValueError) as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 1
-    write_table(table, args.out, stage="trim", metadata={"aircraft": aircraft["name"], "segment": args.segment})
-    print(table[["rotor", "thrust_N", "torque_Nm", "mu_x", "mu_z", "ct", "tip_mach"]].to_string(index=False))
-    return 0
+    except ConfigError as error:
+        return fail(str(error))
+    segment = next((s for s in mission["segments"] if s["id"] == args.segment), None)
+    if segment is None:
+        return fail(f"{args.mission}: segments: no segment '{args.segment}'")
+    if aircraft["name"] not in segment["aircraft"]:
+        return fail(f"{args.mission}: segments.{args.segment}.aircraft: no speeds for '{aircraft['name']}'")
+    atmosphere = {"altitude_m": args.altitude_m, "isa_delta_K": args.isa_delta_k,
+                  "relative_humidity_pct": args.relative_humidity_pct}
+    params = {"aircraft_config": aircraft, "speeds": segment["aircraft"][aircraft["name"]], "atmosphere": atmosphere,
+              "segment": args.segment}
+    return run_stage("trim", {}, {"trim": args.out}, params, args.debug)

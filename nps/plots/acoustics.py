@@ -23,7 +23,7 @@ from nps.plots import save_figure  # noqa: E402
 import pandas as pd  # noqa: E402
 
 from nps.frames import observer_direction  # noqa: E402
-from nps.io import signal_arrays  # noqa: E402
+from nps.signals import signal_arrays  # noqa: E402
 
 # label -> (azimuth_deg, elevation_deg) of the observers shown besides the loudest one
 DIRECTIONS = {

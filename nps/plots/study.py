@@ -10,7 +10,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from nps.io import signal_arrays
+from nps.signals import signal_arrays
 from nps.plots import save_figure
 import pandas as pd
 

@@ -7,8 +7,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from nps.__main__ import main as nps_main
-from nps.acoustics import (AcousticsError, Observers, TimeGrid, _emission_time, fourier_resample, radiate,
-                           radiate_rotor, time_derivative)
+from nps.acoustics import AcousticsError, Observers, TimeGrid, fourier_resample, time_derivative
+from nps.sources import _emission_time, radiate, radiate_rotor
 from nps.io import read_table, write_table
 
 
@@ -99,7 +99,7 @@ def test_cli_round_trip(tmp_path):
     src, obs = _synthetic_tables()
     write_table(src, tmp_path / "s.parquet", stage="test")
     write_table(obs, tmp_path / "o.parquet", stage="test")
-    code = nps_main(["acoustics", "--sources", str(tmp_path / "s.parquet"), "--observers", str(tmp_path / "o.parquet"),
+    code = nps_main(["radiate", "--sources", str(tmp_path / "s.parquet"), "--observers", str(tmp_path / "o.parquet"),
                      "--t-start", "0.05", "--duration", "0.1", "--samples", "100", "--out", str(tmp_path / "p.parquet")])
     assert code == 0
     out = read_table(tmp_path / "p.parquet")
@@ -118,14 +118,14 @@ def test_cli_round_trip(tmp_path):
     (lambda s, o: (s, o.drop(columns="vz_mps")), "missing column"),
 ])
 def test_cli_errors(tmp_path, capsys, mutate, message):
-    """Bad inputs: exit code 1 and a message naming the field, file or observer; no output written."""
+    """Bad inputs: exit code 2 and a message naming the field, file or observer; no output written."""
     src, obs = mutate(*_synthetic_tables())
     src.to_csv(tmp_path / "s.csv", index=False)
     obs.to_csv(tmp_path / "o.csv", index=False)
-    code = nps_main(["acoustics", "--sources", str(tmp_path / "s.csv"), "--observers", str(tmp_path / "o.csv"),
+    code = nps_main(["radiate", "--sources", str(tmp_path / "s.csv"), "--observers", str(tmp_path / "o.csv"),
                      "--t-start", "0.05", "--duration", "0.1", "--samples", "100", "--out", str(tmp_path / "p.parquet")])
     err = capsys.readouterr().err
-    assert code == 1 and message in err and "s.csv" in err
+    assert code == 2 and message in err and "s.csv" in err
     assert not (tmp_path / "p.parquet").exists()
 
 

@@ -3,9 +3,10 @@
 import numpy as np
 import pytest
 
-from nps.acoustics import OBSERVER_BLOCK, Observers, TimeGrid, radiate_rotor
+from nps.acoustics import OBSERVER_BLOCK, Observers, TimeGrid
+from nps.sources import radiate_rotor
 from nps.sources import ThicknessModel
-from tests.unit.test_rotor_acoustics import hover_disk, trim_rows
+from tests.unit.test_acoustics_stage import hover_disk, trim_rows
 
 
 @pytest.mark.parametrize("kind", ["dual_compact", "compact_monopole"])

@@ -17,7 +17,8 @@ from nps.bet import (
     section_forces,
     trim_rotor,
 )
-from nps.rotor import Airfoil, OperatingPoint, RotorGeometry
+from nps.airfoils import LinearAirfoil
+from nps.rotor import OperatingPoint, RotorGeometry
 
 R = 7.62
 GEOM = RotorGeometry(name="main", n_blades=4, radius_m=R, chord_m=0.58, root_cutout_m=0.15 * R,
@@ -96,7 +97,7 @@ def test_symmetric_section_is_odd_in_pitch_and_inflow(speed, reverse, up, theta,
 
 def test_small_angle_limit_is_thesis_eq_4_1():
     """Without drag and tip loss, F_z → ½ρca(θU_T² − U_P U_T) (eq. 4.1) as angles → 0 (rel 1e-4)."""
-    foil = Airfoil(cd0=0.0, cd2=0.0, cl_max=10.0)
+    foil = LinearAirfoil(cd0=0.0, cd2=0.0, cl_max=10.0)
     g = RotorGeometry(**{**GEOM.__dict__, "airfoil": foil})
     ut, up, theta = 150.0, 0.3, 0.01
     f = section_forces(ut, up, theta, 5.0, g, 1.225, 1e9, tip_loss=False)
@@ -178,18 +179,19 @@ def test_cli_writes_disk_summary_and_history(tmp_path, repo_root):
 
     from nps.__main__ import main
     from nps.io import read_table, write_table
+    from tests.trim_tables import complete_trim
 
-    trim = pd.DataFrame({"rotor": ["main"], "omega_rad_s": [28.0], "mu_x": [0.2], "mu_y": [0.0], "mu_z": [0.02],
+    trim = complete_trim(pd.DataFrame({"rotor": ["main"], "omega_rad_s": [28.0], "mu_x": [0.2], "mu_y": [0.0], "mu_z": [0.02],
                          "density_kg_m3": [1.225], "speed_of_sound_mps": [340.3], "thrust_N": [WEIGHT_N],
-                         "roll_moment_Nm": [0.0], "pitch_moment_Nm": [0.0]})
+                         "roll_moment_Nm": [0.0], "pitch_moment_Nm": [0.0]}))
     write_table(trim, tmp_path / "trim.parquet", stage="test")
     out = tmp_path / "loads" / "main.parquet"
     argv = ["loads", "--aircraft", str(repo_root / "config/aircraft/helicopter.yaml"), "--rotor", "main",
-            "--trim", str(tmp_path / "trim.parquet"), "--n-psi", "36", "--n-r", "10", "--out", str(out)]
+            "--trim", str(tmp_path / "trim.parquet"), "--n-psi", "36", "--n-r", "10", "--out-dir", str(out.parent)]
     assert main(argv) == 0
     assert tuple(read_table(out).columns) == DISK_COLUMNS
     summary = read_table(tmp_path / "loads" / "main_summary.parquet", required=("quantity", "value", "unit"))
     for q in ("theta0_rad", "beta1s_rad", "lambda0", "kx", "thrust_N", "power_W", "ct", "trim_iterations", "mean_cl"):
         assert q in set(summary["quantity"])
     assert len(read_table(tmp_path / "loads" / "main_history.parquet")) >= 2
-    assert main(argv[:4] + ["nope"] + argv[5:]) == 1
+    assert main(argv[:4] + ["nope"] + argv[5:]) == 2

@@ -54,8 +54,8 @@ def test_read_names_missing_columns(tmp_path):
 
 def test_signal_arrays_inverts_signals_table_in_any_row_order():
     """signal_arrays(signals_table(p)) == p, also after shuffling rows (the non-canonical path)."""
-    from nps.acoustics import TimeGrid, signals_table
-    from nps.io import signal_arrays
+    from nps.acoustics import TimeGrid
+    from nps.signals import signal_arrays, signals_table
 
     rng = np.random.default_rng(3)
     ids = np.array([7, 2, 5])

@@ -147,7 +147,7 @@ def test_metrics_tables_from_artifacts():
 
 def test_cli_end_to_end(tmp_path, repo_root):
     """`python -m nps metrics` on synthetic artifacts writes both tables (and a figure) with the
-    contract columns, and a missing rotor signal is a clear error (exit 1), not a traceback."""
+    contract columns, and a missing rotor signal is a clear error (exit 2), not a traceback."""
     from nps.cli.metrics import main
     from nps.io import read_table, write_table
 
@@ -155,25 +155,27 @@ def test_cli_end_to_end(tmp_path, repo_root):
     period = 2 * np.pi / 28.0
     time = np.arange(n) * period / n
     p = np.tile(np.cos(2 * np.pi * 4 * time / period), (2, 1))
-    trim = pd.DataFrame([_trim_row("main", 0.0, 4, 28.0), _trim_row("tail", -9.9, 4, 28.0)])
+    from tests.trim_tables import complete_trim
+
+    trim = complete_trim(pd.DataFrame([_trim_row("main", 0.0, 4, 28.0), _trim_row("tail", -9.9, 4, 28.0)]))
     write_table(trim, tmp_path / "trim.parquet", stage="test")
     observers = pd.DataFrame({"observer": np.int32([0, 1]), "x_m": [0.0, 76.2], "y_m": 0.0, "z_m": [-76.2, 0.0],
                               "vx_mps": 0.0, "vy_mps": 0.0, "vz_mps": 0.0,
                               "elevation_deg": [-90.0, 0.0], "azimuth_deg": [0.0, 180.0]})
     write_table(observers, tmp_path / "obs.parquet", stage="test")
     for rotor in ("main", "tail"):
-        write_table(_signal_table({"thickness": p, "loading": 0.5 * p}, time), tmp_path / f"{rotor}.parquet", stage="test")
+        write_table(_signal_table({"thickness": p, "loading": 0.5 * p}, time), tmp_path / "sig" / f"{rotor}.parquet", stage="test")
     args = ["--aircraft", str(repo_root / "config/aircraft/helicopter.yaml"), "--trim", str(tmp_path / "trim.parquet"),
             "--observers", str(tmp_path / "obs.parquet"), "--out", str(tmp_path / "m.parquet"),
-            "--bands-out", str(tmp_path / "b.parquet"), "--signals", f"main={tmp_path / 'main.parquet'}"]
-    assert main(args + [f"tail={tmp_path / 'tail.parquet'}", "--figure", str(tmp_path / "s.png")]) == 0
+            "--bands-out", str(tmp_path / "b.parquet"), "--signals", str(tmp_path / "sig")]
+    assert main(args + ["--figure", str(tmp_path / "s.png")]) == 0
     table = read_table(tmp_path / "m.parquet")
     for column in ("observer", "elevation_deg", "azimuth_deg", "oaspl_db", "oaspl_dba", "bvispl_db",
                    "oaspl_thickness_db", "oaspl_loading_db", "oaspl_broadband_db"):
         assert column in table.columns
     assert set(read_table(tmp_path / "b.parquet")["source"]) == {"thickness", "loading", "broadband", "total"}
     assert (tmp_path / "s.png").stat().st_size > 10_000
-    assert main(args) == 1
+    assert main(args + ["--rotor", "main", "aux"]) == 2
 
 
 def test_pnlt_of_many_spectra_equals_one_at_a_time():

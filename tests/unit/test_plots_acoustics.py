@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from nps.acoustics import TimeGrid, signals_table
+from nps.acoustics import TimeGrid
+from nps.signals import signals_table
 from nps.observers import hemisphere
 from nps.plots.acoustics import group_signals, nearest_observer, pick_observers, pressure_histories
 

@@ -4,7 +4,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from nps.study import hotspot, segment_summary, stage_wall_times
+from nps.stages.summary import stage_wall_times
+from nps.study import hotspot, segment_summary
 
 
 def test_hotspot_finds_maximum_and_breaks_ties_by_observer():

@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from nps.acoustics import radiate
+from nps.sources import radiate
 
 STEPS_PER_REV = 256
 REVOLUTIONS = 3

@@ -4,7 +4,7 @@ changes OASPL by less than 0.05 dB on the study cases.
 Chain: config/aircraft/<aircraft>.yaml and the seg3 speeds of config/missions/demo.yaml (6° descent,
 the BVI segment, 25.7 m/s), ISA sea level → nps.trim.trim_aircraft → nps.bet.trim_rotor on
 n_psi = 180 and 360 azimuths (the source steps of the acoustic lines), n_r = 30 →
-nps.acoustics.radiate_rotor (dual-compact thickness + loading, every rotor of the aircraft summed
+nps.sources.radiate_rotor (dual-compact thickness + loading, every rotor of the aircraft summed
 on the main rotor's grid of 1024 samples per revolution, the campaign default) → OASPL (dB re
 20 µPa) of the total signal at 16 observers of the 10 R hemisphere about the first rotor's hub,
 moving with the aircraft (elevation 0°, −30°, −60°, −90° × azimuth 0°, 90°, 180°, 270°).
@@ -18,7 +18,7 @@ Measured max |ΔOASPL| (180 → 360): helicopter 2.4e-5 dB, tandem 3.8e-5, coaxi
 import numpy as np
 import pytest
 
-from nps import acoustics, bet
+from nps import acoustics, bet, sources
 from nps.atmosphere import isa
 from nps.config import load_aircraft, load_mission
 from nps.observers import hemisphere
@@ -47,7 +47,7 @@ def _oaspl(repo_root, aircraft_name, n_psi):
         geometry = RotorGeometry.from_config(rotor)
         row = trim[trim["rotor"] == geometry.name].iloc[0]
         loads = bet.trim_rotor(geometry, OperatingPoint.from_trim_row(row), bet.DiskGrid(n_psi, N_R))
-        total += acoustics.radiate_rotor(loads.disk, row, observers, grid, hinge_offset_m=geometry.hinge_offset_m).sum(axis=1)
+        total += sources.radiate_rotor(loads.disk, row, observers, grid, hinge_offset_m=geometry.hinge_offset_m).sum(axis=1)
     return 10.0 * np.log10((total**2).mean(axis=-1) / 4e-10)
 
 

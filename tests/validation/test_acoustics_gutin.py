@@ -15,7 +15,8 @@ import numpy as np
 import pandas as pd
 from scipy.special import jv
 
-from nps.acoustics import Observers, TimeGrid, radiate_rotor
+from nps.acoustics import Observers, TimeGrid
+from nps.sources import radiate_rotor
 from nps.observers import hemisphere
 from nps.sources import ThicknessModel
 

@@ -17,7 +17,7 @@ and > 10x the gain ahead (< 0.1 dB); A-weighted gain below > 20 dB, ahead < 2 dB
 import numpy as np
 import pandas as pd
 
-from nps import acoustics, bet, metrics
+from nps import acoustics, bet, metrics, sources
 from nps.atmosphere import isa
 from nps.config import load_aircraft, load_mission
 from nps.rotor import OperatingPoint, RotorGeometry
@@ -43,7 +43,7 @@ def test_broadband_matters_below_not_ahead(repo_root):
     direction = np.stack([-np.cos(azimuth) * np.cos(elevation), -np.sin(azimuth) * np.cos(elevation), np.sin(elevation)], 1)
     position = hub + 10.0 * geometry.radius_m * direction
     grid = acoustics.TimeGrid(0.0, 2.0 * np.pi / row["omega_rad_s"], SAMPLES_PER_REV)
-    p = acoustics.radiate_rotor(loads.disk, row, acoustics.Observers(position, np.tile(velocity, (2, 1))), grid)
+    p = sources.radiate_rotor(loads.disk, row, acoustics.Observers(position, np.tile(velocity, (2, 1))), grid)
     frames = [
         pd.DataFrame({"observer": np.int32(o), "group": group, "time_s": grid.times_s, "p_Pa": p[o, g]})
         for g, group in enumerate(("loading", "thickness"))

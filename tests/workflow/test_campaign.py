@@ -77,6 +77,31 @@ def test_campaign_artifacts_are_finite(campaign_dir):
                 assert np.isfinite(column).all(), f"{path}:{name}"
 
 
+def test_campaign_reproduces_the_committed_manifest(campaign_dir):
+    """Every artifact of the tiny campaign has the content digest recorded in tests/data/manifests (made before
+    the issue-16 restructuring; only a deliberate physics change may regenerate it)."""
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    from artifact_digests import compare, digests, read_manifest
+
+    problems = compare(digests(campaign_dir / "results"), read_manifest(REPO / "tests/data/manifests/tiny_campaign.sha256"))
+    assert not problems, problems[:20]
+
+
+def test_failing_job_writes_its_error_into_its_log(tmp_path):
+    """A job that fails leaves its error and traceback in its log: file (where Snakemake points the user)."""
+    import shutil
+
+    shutil.copytree(REPO / "config", tmp_path / "config")
+    tiny = dict(TINY, campaign={"mission": "demo", "aircraft": ["helicopter"], "segments": ["seg2"]})
+    (tmp_path / "config" / "config.yaml").write_text(yaml.safe_dump(tiny, sort_keys=False))
+    aircraft = tmp_path / "config" / "aircraft" / "helicopter.yaml"
+    aircraft.write_text(aircraft.read_text().replace("gross_weight_kg: ", "gross_weight_kg: 1.0e+9 #"))
+    result = _snakemake(tmp_path, "-j1", "results/helicopter/seg2/trim.parquet")
+    assert result.returncode != 0
+    log = (tmp_path / "results/logs/trim/helicopter/seg2.log").read_text()
+    assert "stage 'trim' failed" in log and "Traceback" in log and "nps/stages/trim.py" in log
+
+
 def test_second_run_does_nothing(campaign_dir):
     result = _snakemake(campaign_dir, "-n", "all")
     assert result.returncode == 0, result.stderr[-2000:]

@@ -1,9 +1,13 @@
-# Shared definitions: validated campaign, wildcard constraints, config slices and code hashes.
-import hashlib
+# Shared definitions: validated campaign, wildcard constraints, paths and the code digest of each stage.
+# Every job runs workflow/scripts/stage.py, which calls nps.stages.<name of the rule>.run (rule name = stage name).
 import sys
-from pathlib import Path
 
 from nps.config import ConfigError, load_campaign
+from nps.stages.code import stage_digest
+from nps.metrics import rotor_solidities
+import nps.resources as nps_resources
+
+
 
 # Configuration paths are relative to the working directory (`snakemake -d DIR` runs a campaign elsewhere).
 # A configuration error stops the run before any job with the validator's message alone.
@@ -14,6 +18,8 @@ except ConfigError as error:
     raise SystemExit(1)
 RESULTS = "results"
 ALL_TARGETS = []
+STAGE_SCRIPT = "../scripts/stage.py"
+BASE = f"{RESULTS}/{{aircraft}}/{{segment}}"  # per aircraft x segment artifacts
 
 
 wildcard_constraints:
@@ -24,81 +30,10 @@ wildcard_constraints:
     variant="base|bvi",
 
 
-def nps_hash(*modules):
-    """Hash of the named nps modules (e.g. "bet", "plots/disk"): a param that reruns a job when its code changes."""
-    digest = hashlib.sha256()
-    for name in sorted(set(modules) | {"io", "config", "rotor", "frames"}):
-        digest.update((Path(workflow.basedir) / "nps" / f"{name}.py").read_bytes())
-    return digest.hexdigest()[:16]
-
-
-def aircraft_config(wildcards):
-    """The whole validated aircraft configuration."""
-    return CAMPAIGN.aircraft[wildcards.aircraft]
-
-
-def rotor_config(wildcards):
-    """The validated configuration of one rotor."""
-    return CAMPAIGN.rotor(wildcards.aircraft, wildcards.rotor)
-
-
-def rotor_config_named(aircraft, rotor):
-    return CAMPAIGN.rotor(aircraft, rotor)
-
-
-def segment_speeds(wildcards):
-    """Speeds of one aircraft in one segment (a mission-file slice)."""
-    return CAMPAIGN.segment(wildcards.segment)["aircraft"][wildcards.aircraft]
-
-
-def rotor_names(aircraft):
-    return CAMPAIGN.rotor_names(aircraft)
-
-
-def observer_sets(segment):
-    """Observer sets used in a segment."""
-    return [name for name, obs in config["observer_sets"].items() if segment in obs.get("segments", CAMPAIGN.segments)]
-
-
-def bvi_segments():
-    """Segments where the wake and BVI loads are computed (all when not listed)."""
-    if not config["models"]["bvi"]:
-        return []
-    return [s for s in CAMPAIGN.segments if s in config["models"].get("bvi_segments", CAMPAIGN.segments)]
-
-
-def hsi_segments():
-    """Segments whose signals get the HSI post-processing (all when not listed)."""
-    if not config["models"]["hsi"]:
-        return []
-    return [s for s in CAMPAIGN.segments if s in config["models"].get("hsi_segments", CAMPAIGN.segments)]
-
-
-def figure_rotors(aircraft):
-    """Rotors drawn in per-rotor figures: all of a one- or two-rotor aircraft, else the first."""
-    names = rotor_names(aircraft)
-    return names if len(names) <= 2 else names[:1]
-
-
-def variants(segment):
-    """Load variants radiated in a segment: the trimmed loads ("base") and/or the BVI loads ("bvi").
-
-    Outside the BVI segments only "base"; in a BVI segment "bvi", preceded by "base" where the
-    comparison without BVI is asked for (models.without_bvi_segments, default every BVI segment).
-    """
-    if segment not in bvi_segments():
-        return ["base"]
-    return ["base", "bvi"] if segment in config["models"].get("without_bvi_segments", bvi_segments()) else ["bvi"]
-
-
-def figure_segments(kind):
-    """Campaign segments listed for a figure family in config["figures"]."""
-    return [s for s in CAMPAIGN.segments if s in config["figures"][f"{kind}_segments"]]
-
-
-def campaign_pairs():
-    """(aircraft, segment) pairs of the campaign."""
-    return [(a, s) for a in CAMPAIGN.aircraft for s in CAMPAIGN.segments]
+def code(stage):
+    """Digest of every nps module the stage's jobs run (nps.stages.code): a param that reruns the jobs when
+    any of that code changes, and only then."""
+    return stage_digest(stage)
 
 
 def log_path(stage, suffix="{aircraft}/{segment}"):
@@ -111,88 +46,144 @@ def bench_path(stage, suffix="{aircraft}/{segment}"):
 
 def signals_dir(stage):
     """Directory of the per-rotor signal tables ({rotor}.parquet) of a stage ("acoustics" or "hsi")."""
-    return f"{RESULTS}/{{aircraft}}/{{segment}}/{stage}/{{obsset}}_{{variant}}"
+    return f"{BASE}/{stage}/{{obsset}}_{{variant}}"
 
 
-# used by acoustics.smk
-def acoustics_disk_inputs(wildcards):
-    """Disk table of every rotor: trimmed loads (variant base) or BVI loads (variant bvi)."""
-    base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
-    if wildcards.variant == "bvi":  # the wake job writes the bvi/ directory of every rotor
-        return {"bvi_dir": f"{base}/bvi"}
-    return {f"disk_{r}": f"{base}/loads/{r}.parquet" for r in rotor_names(wildcards.aircraft)}
+def aircraft_config(wildcards):
+    """The whole validated aircraft configuration."""
+    return CAMPAIGN.aircraft[wildcards.aircraft]
 
 
-# used by metrics.smk
-def metrics_signal_inputs(wildcards):
-    """Pressure-signal directory of the aircraft (and its HSI-processed version in HSI segments)."""
-    base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
-    inputs = {"signals": f"{base}/acoustics/{wildcards.obsset}_{wildcards.variant}"}
-    if wildcards.segment in hsi_segments():
-        inputs["hsi"] = f"{base}/hsi/{wildcards.obsset}_{wildcards.variant}"
-    return inputs
+def rotor_names(aircraft):
+    return CAMPAIGN.rotor_names(aircraft)
 
 
-# used by metrics.smk
-def metrics_solidity(wildcards):
-    """Rotor name -> solidity (the only aircraft-configuration slice the metrics depend on)."""
-    from nps.metrics import rotor_solidities
+def rotor_configs(wildcards):
+    """Rotor name -> validated rotor configuration, in aircraft order."""
+    return {r["name"]: r for r in aircraft_config(wildcards)["rotors"]}
 
-    return rotor_solidities(aircraft_config(wildcards))
+
+def figure_rotors(aircraft):
+    """Rotors drawn in per-rotor figures: all of a one- or two-rotor aircraft, else the first."""
+    names = rotor_names(aircraft)
+    return names if len(names) <= 2 else names[:1]
+
+
+def campaign_pairs():
+    """(aircraft, segment) pairs of the campaign."""
+    return [(a, s) for a in CAMPAIGN.aircraft for s in CAMPAIGN.segments]
+
+
+def hemisphere_radius_R():
+    """Radius of the hemisphere observer set in rotor radii (figure captions and titles)."""
+    return config["observer_sets"]["hemisphere"]["radius_R"]
 
 
 # used by study.smk
 MAP_SEGMENTS = {
-    "oaspl": lambda: figure_segments("map"),
-    "dba": lambda: figure_segments("bvi_map"),
-    "bvispl": lambda: figure_segments("bvi_map"),
-    "hsi_oaspl": lambda: [s for s in figure_segments("hsi") if s in hsi_segments()],
+    "oaspl": lambda: CAMPAIGN.figure_segments("map"),
+    "dba": lambda: CAMPAIGN.figure_segments("bvi_map"),
+    "bvispl": lambda: CAMPAIGN.figure_segments("bvi_map"),
+    "hsi_oaspl": lambda: [s for s in CAMPAIGN.figure_segments("hsi") if s in CAMPAIGN.hsi_segments()],
 }
 
 
-# used by study.smk
 def map_kinds():
     """Map families with at least one segment in the campaign."""
     return [kind for kind, segments in MAP_SEGMENTS.items() if segments()]
 
 
-# used by study.smk
 def map_segments_all():
     """Segments drawn in any map family."""
     return [s for s in CAMPAIGN.segments if any(s in MAP_SEGMENTS[kind]() for kind in map_kinds())]
 
 
-# used by study.smk
-def best_variant(segment):
-    return variants(segment)[-1]
-
-
-# used by study.smk
 def hemisphere_metrics(aircraft, segment):
-    return f"{RESULTS}/{aircraft}/{segment}/metrics/hemisphere_{best_variant(segment)}.parquet"
+    """Hemisphere metrics of the variant with BVI wherever it was computed."""
+    return f"{RESULTS}/{aircraft}/{segment}/metrics/hemisphere_{CAMPAIGN.variants(segment)[-1]}.parquet"
 
 
-# used by study.smk
 def antitorque_rotors(aircraft):
     return [r["name"] for r in CAMPAIGN.aircraft[aircraft]["rotors"] if r["role"] == "antitorque"]
 
 
-# used by wake.smk
-def wake_inputs(wildcards):
-    base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
-    inputs = {"trim": f"{base}/trim.parquet"}
-    for r in rotor_names(wildcards.aircraft):
-        inputs[f"disk_{r}"] = f"{base}/loads/{r}.parquet"
-        inputs[f"summary_{r}"] = f"{base}/loads/{r}_summary.parquet"
+# used by metrics.smk
+def metrics_signal_inputs(wildcards):
+    """Pressure-signal directory of the aircraft (and its HSI-processed version in HSI segments)."""
+    inputs = {"signals": signals_dir("acoustics").format(**wildcards)}
+    if wildcards.segment in CAMPAIGN.hsi_segments():
+        inputs["hsi"] = signals_dir("hsi").format(**wildcards)
     return inputs
 
 
 # used by figures.smk
 def rotor_figure_inputs(wildcards):
     base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
-    inputs = {}
-    for r in figure_rotors(wildcards.aircraft):
-        inputs[f"loads_{r}"] = f"{base}/loads/{r}.parquet"
-    if wildcards.segment in bvi_segments():
+    inputs = {"loads": f"{base}/loads"}
+    if wildcards.segment in CAMPAIGN.bvi_segments():
         inputs.update(wake=f"{base}/wake", bvi=f"{base}/bvi")
     return inputs
+
+
+# ---- Cluster requests of every job (nps.resources): threads, and mem_mb / runtime from the resolution ----
+# ---- in config, the job's rotors and observer set, growing with the attempt (profiles/slurm retries). ----
+def _job_load(wildcards):
+    """(observers, rotors, HSI signals read) of a job; jobs without an observer set read the hemisphere's."""
+    obsset = wildcards.get("obsset", "hemisphere")
+    spec = config["observer_sets"].get(obsset)
+    n_observers = nps_resources.observer_count(spec) if spec else 1
+    n_rotors = len(rotor_names(wildcards.aircraft))
+    return n_observers, n_rotors, wildcards.get("segment") in CAMPAIGN.hsi_segments()
+
+
+def job_threads(stage):
+    return lambda wildcards: nps_resources.job_threads(stage, _job_load(wildcards)[0])
+
+
+def job_mem_mb(stage):
+    return lambda wildcards, attempt: nps_resources.job_mem_mb(stage, config["resolution"], *_job_load(wildcards), attempt)
+
+
+def job_runtime(stage):
+    return lambda wildcards, attempt: nps_resources.job_runtime_min(stage, config["resolution"], *_job_load(wildcards)[:2], attempt)
+
+
+# used by study.smk
+def summary_inputs(wildcards):
+    """Per segment: trim, loads directory and hemisphere metrics of each variant; the wake directories are
+    not read but make the wake jobs finish first, so their wall times are in the table."""
+    base = f"{RESULTS}/{wildcards.aircraft}"
+    inputs = {}
+    for s in CAMPAIGN.segments:
+        inputs.update({f"trim_{s}": f"{base}/{s}/trim.parquet", f"loads_{s}": f"{base}/{s}/loads"})
+        inputs.update({f"metrics_{s}_{v}": f"{base}/{s}/metrics/hemisphere_{v}.parquet" for v in CAMPAIGN.variants(s)})
+    inputs.update({f"wake_{s}": f"{base}/{s}/wake" for s in CAMPAIGN.bvi_segments()})
+    return inputs
+
+
+# used by footprint.smk and certification.smk
+def source_set():
+    return config["footprint"]["source_set"]
+
+
+def product_variant(segment):
+    """The load variant of the product: with BVI wherever it is computed (as the summary)."""
+    return CAMPAIGN.variants(segment)[-1]
+
+
+def source_hemisphere_inputs(wildcards):
+    variant = product_variant(wildcards.segment)
+    base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
+    inputs = {"signals": f"{base}/acoustics/{source_set()}_{variant}", "trim": f"{base}/trim.parquet",
+              "observers": f"{base}/observers/{source_set()}.parquet"}
+    if wildcards.segment in CAMPAIGN.hsi_segments():
+        inputs["hsi"] = f"{base}/hsi/{source_set()}_{variant}"
+    return inputs
+
+
+def profile_segments():
+    return list(dict.fromkeys(leg["segment"] for leg in CAMPAIGN.mission.get("profile", [])))
+
+
+def footprint_inputs(wildcards):
+    return {f"hemisphere_{s}": f"{RESULTS}/{wildcards.aircraft}/{s}/source_hemisphere.parquet" for s in profile_segments()}

@@ -1,40 +1,40 @@
-# High-speed-impulsive noise (issue 7): each rotor's signals amplified, sheared and shock-fitted per
-# observer with the rotor's own M_r and radiation distance (nps.hsi), all rotors of the aircraft in
-# one job per observer set x variant; metrics sum the rotors.
-# Only scheduled when config models.hsi is true (metrics then read hsi/ instead of acoustics/).
+# High-speed-impulsive noise: each rotor's signals amplified, sheared and shock-fitted per observer with
+# the rotor's own M_r and radiation distance (nps.stages.hsi), all rotors of the aircraft in one job per
+# observer set x variant; metrics sum the rotors. Scheduled in the HSI segments (models.hsi, hsi_segments).
 
 
 rule hsi:
     input:
         signals=signals_dir("acoustics"),
-        observers=f"{RESULTS}/{{aircraft}}/{{segment}}/observers/{{obsset}}.parquet",
-        trim=f"{RESULTS}/{{aircraft}}/{{segment}}/trim.parquet",
+        observers=f"{BASE}/observers/{{obsset}}.parquet",
+        trim=f"{BASE}/trim.parquet",
     output:
         # {rotor}.parquet (HSI signals) and {rotor}_diagnostics.parquet per rotor
-        directory(signals_dir("hsi")),
+        hsi=directory(signals_dir("hsi")),
     params:
         rotors=lambda wildcards: rotor_names(wildcards.aircraft),
-        code=nps_hash("hsi"),
+        code=code("hsi"),
     log:
         log_path("hsi", "{aircraft}/{segment}/{obsset}_{variant}"),
     benchmark:
         bench_path("hsi", "{aircraft}/{segment}/{obsset}_{variant}")
-    threads: 1
+    threads: job_threads("hsi")
+    group: "radiate"
     resources:
-        mem_mb=2000,
-        runtime=10,
+        mem_mb=job_mem_mb("hsi"),
+        runtime=job_runtime("hsi"),
     script:
-        "../scripts/hsi.py"
+        STAGE_SCRIPT
 
 
 rule hsi_figure:
     input:
         signals=signals_dir("acoustics"),
         hsi=signals_dir("hsi"),
-        observers=f"{RESULTS}/{{aircraft}}/{{segment}}/observers/{{obsset}}.parquet",
+        observers=f"{BASE}/observers/{{obsset}}.parquet",
     output:
-        report(
-            f"{RESULTS}/{{aircraft}}/{{segment}}/figures/hsi_{{obsset}}_{{variant}}.png",
+        figure=report(
+            f"{BASE}/figures/hsi_{{obsset}}_{{variant}}.png",
             caption="../report/hsi_observers.rst",
             category="{aircraft}",
             subcategory="{segment}",
@@ -42,27 +42,33 @@ rule hsi_figure:
         ),
     params:
         rotors=lambda wildcards: rotor_names(wildcards.aircraft),
-        code=nps_hash("hsi", "plots/hsi"),
+        description=lambda wildcards: f"observers {config['observer_sets'][wildcards.obsset]['radius_R']:g} R ahead",
+        code=code("hsi_figure"),
     log:
         log_path("hsi_figure", "{aircraft}/{segment}/{obsset}_{variant}"),
     benchmark:
         bench_path("hsi_figure", "{aircraft}/{segment}/{obsset}_{variant}")
     threads: 1
+    group: "radiate"
     resources:
-        mem_mb=800,
-        runtime=5,
+        mem_mb=job_mem_mb("hsi_figure"),
+        runtime=job_runtime("hsi_figure"),
     script:
-        "../scripts/hsi_figure.py"
+        STAGE_SCRIPT
 
 
 ALL_TARGETS.extend(
-    f"{RESULTS}/{a}/{s}/hsi/{o}_{v}" for a in CAMPAIGN.aircraft for s in hsi_segments() for o in observer_sets(s) for v in variants(s)
+    f"{RESULTS}/{a}/{s}/hsi/{o}_{v}"
+    for a in CAMPAIGN.aircraft
+    for s in CAMPAIGN.hsi_segments()
+    for o in CAMPAIGN.observer_sets(s)
+    for v in CAMPAIGN.variants(s)
 )
 ALL_TARGETS.extend(
     f"{RESULTS}/{a}/{s}/figures/hsi_{o}_{v}.png"
     for a in CAMPAIGN.aircraft
-    for s in hsi_segments()
-    for o in observer_sets(s)
+    for s in CAMPAIGN.hsi_segments()
+    for o in CAMPAIGN.observer_sets(s)
     if config["observer_sets"][o]["kind"] == "points_ahead"
-    for v in variants(s)
+    for v in CAMPAIGN.variants(s)
 )

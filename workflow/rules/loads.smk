@@ -1,29 +1,29 @@
-# Rotor blade loads (issue 3): BET, linear inflow, flapping and the three-step trim per
-# aircraft x segment x rotor (nps.bet). Disk plots: rule rotor_figures (figures.smk).
+# Rotor blade loads: BET, linear inflow, flapping and the three-step trim of every rotor of an aircraft
+# x segment in one job (nps.stages.loads; one file set per rotor). Disk plots: rule rotor_figures.
 
 
 rule loads:
     input:
-        trim=f"{RESULTS}/{{aircraft}}/{{segment}}/trim.parquet",
+        trim=f"{BASE}/trim.parquet",
     output:
-        disk=f"{RESULTS}/{{aircraft}}/{{segment}}/loads/{{rotor}}.parquet",
-        summary=f"{RESULTS}/{{aircraft}}/{{segment}}/loads/{{rotor}}_summary.parquet",
-        history=f"{RESULTS}/{{aircraft}}/{{segment}}/loads/{{rotor}}_history.parquet",
+        # {rotor}.parquet (disk table), {rotor}_summary.parquet, {rotor}_history.parquet per rotor
+        loads=directory(f"{BASE}/loads"),
     params:
-        rotor=rotor_config,
+        rotors=rotor_configs,
         n_psi=config["resolution"]["n_psi"],
         n_r=config["resolution"]["n_r"],
-        code=nps_hash("bet", "cli/loads"),
+        code=code("loads"),
     log:
-        log_path("loads", "{aircraft}/{segment}/{rotor}"),
+        log_path("loads"),
     benchmark:
-        bench_path("loads", "{aircraft}/{segment}/{rotor}")
+        bench_path("loads")
     threads: 1
+    group: "prepare"
     resources:
-        mem_mb=800,
-        runtime=5,
+        mem_mb=job_mem_mb("loads"),
+        runtime=job_runtime("loads"),
     script:
-        "../scripts/loads.py"
+        STAGE_SCRIPT
 
 
-ALL_TARGETS.extend(f"{RESULTS}/{a}/{s}/loads/{r}.parquet" for a, s in campaign_pairs() for r in rotor_names(a))
+ALL_TARGETS.extend(f"{RESULTS}/{a}/{s}/loads" for a, s in campaign_pairs())

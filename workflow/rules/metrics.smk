@@ -1,18 +1,16 @@
-# Noise metrics (issue 6): OASPL, OASPL_A, BVISPL, PNL(T), per-source levels and 1/3-octave bands
-# per aircraft x segment x observer set x variant, from the summed rotor signals (+ HSI, Pegg
-# broadband, ISO 9613-1 absorption when the models are on).
-
-
+# Noise metrics: OASPL, OASPL_A, BVISPL, PNL(T), per-source levels and 1/3-octave bands per aircraft x
+# segment x observer set x variant, from the summed rotor signals (+ HSI, Pegg broadband, ISO 9613-1
+# absorption when the models are on): nps.stages.metrics.
 rule metrics:
     input:
         unpack(metrics_signal_inputs),
-        trim=f"{RESULTS}/{{aircraft}}/{{segment}}/trim.parquet",
-        observers=f"{RESULTS}/{{aircraft}}/{{segment}}/observers/{{obsset}}.parquet",
+        trim=f"{BASE}/trim.parquet",
+        observers=f"{BASE}/observers/{{obsset}}.parquet",
     output:
-        metrics=f"{RESULTS}/{{aircraft}}/{{segment}}/metrics/{{obsset}}_{{variant}}.parquet",
-        bands=f"{RESULTS}/{{aircraft}}/{{segment}}/metrics/{{obsset}}_{{variant}}_bands.parquet",
+        metrics=f"{BASE}/metrics/{{obsset}}_{{variant}}.parquet",
+        bands=f"{BASE}/metrics/{{obsset}}_{{variant}}_bands.parquet",
         figure=report(
-            f"{RESULTS}/{{aircraft}}/{{segment}}/metrics/{{obsset}}_{{variant}}_spectrum.png",
+            f"{BASE}/metrics/{{obsset}}_{{variant}}_spectrum.png",
             caption="../report/metrics_spectrum.rst",
             category="{aircraft}",
             subcategory="{segment}",
@@ -20,28 +18,29 @@ rule metrics:
         ),
     params:
         rotors=lambda wildcards: rotor_names(wildcards.aircraft),
-        solidity=metrics_solidity,
+        # rotor name -> solidity: the only aircraft-configuration slice the metrics depend on
+        solidity=lambda wildcards: rotor_solidities(aircraft_config(wildcards)),
         atmosphere=config["atmosphere"],
         broadband=config["models"]["broadband"],
         absorption=config["models"]["absorption"],
-        hsi=lambda wildcards: wildcards.segment in hsi_segments(),
         harmonics=config["acoustics"]["bvispl_harmonics"],
-        code=nps_hash("metrics", "spectra", "broadband", "atmosphere", "plots/spectra"),
+        code=code("metrics"),
     log:
         log_path("metrics", "{aircraft}/{segment}/{obsset}_{variant}"),
     benchmark:
         bench_path("metrics", "{aircraft}/{segment}/{obsset}_{variant}")
     threads: 1
+    group: "radiate"
     resources:
-        mem_mb=1500,
-        runtime=10,
+        mem_mb=job_mem_mb("metrics"),
+        runtime=job_runtime("metrics"),
     script:
-        "../scripts/metrics.py"
+        STAGE_SCRIPT
 
 
 ALL_TARGETS.extend(
     f"{RESULTS}/{a}/{s}/metrics/{o}_{v}.parquet"
     for a, s in campaign_pairs()
-    for o in observer_sets(s)
-    for v in variants(s)
+    for o in CAMPAIGN.observer_sets(s)
+    for v in CAMPAIGN.variants(s)
 )

@@ -1,24 +1,25 @@
-# Aircraft trim (NDARC's role): per aircraft x segment, thrust targets and rotor states.
+# Aircraft trim (NDARC's role): per aircraft x segment, thrust targets and rotor states (nps.stages.trim).
 
 
 rule trim:
     output:
-        f"{RESULTS}/{{aircraft}}/{{segment}}/trim.parquet",
+        trim=f"{BASE}/trim.parquet",
     params:
-        aircraft=aircraft_config,
-        speeds=segment_speeds,
+        aircraft_config=aircraft_config,
+        speeds=lambda wildcards: CAMPAIGN.segment(wildcards.segment)["aircraft"][wildcards.aircraft],
         atmosphere=config["atmosphere"],
-        code=nps_hash("trim", "atmosphere"),
+        code=code("trim"),
     log:
         log_path("trim"),
     benchmark:
         bench_path("trim")
     threads: 1
+    group: "prepare"
     resources:
-        mem_mb=500,
-        runtime=5,
+        mem_mb=job_mem_mb("trim"),
+        runtime=job_runtime("trim"),
     script:
-        "../scripts/trim.py"
+        STAGE_SCRIPT
 
 
 ALL_TARGETS.extend(f"{RESULTS}/{a}/{s}/trim.parquet" for a, s in campaign_pairs())

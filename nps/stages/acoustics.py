@@ -1,0 +1,49 @@
+"""Stage ``acoustics``: compact-F1A pressure signals of every rotor of an aircraft at one observer set.
+
+inputs: ``disks`` (directory of ``{rotor}.parquet`` disk tables: the loads stage's directory for
+variant ``base``, the wake stage's ``bvi`` directory for variant ``bvi``), ``trim``, ``observers``.
+outputs: ``signals``, a directory of ``{rotor}.parquet`` signal tables (docs/conventions.md:
+``observer``, ``group`` (``loading``, ``thickness``), ``time_s``, ``p_Pa``) on the aircraft's common
+grid: one revolution of the reference (first) rotor with ``samples_per_rev`` samples from t = 0.
+params: ``rotors`` (names, the first is the reference), ``hinge_offsets_m`` (rotor → hinge offset),
+``thickness`` (``dual_compact`` or ``compact_monopole``), ``chord_fractions`` (dual-compact line
+positions), ``samples_per_rev``, ``aircraft``, ``segment``, ``obsset``, ``variant``.
+"""
+
+from __future__ import annotations
+
+from nps.acoustics import LOADING, THICKNESS, AcousticsError, Observers
+from nps.io import read_table, rotor_path, write_table
+from nps.signals import signals_table
+from nps.sources import DISK_COLUMNS, ThicknessModel, common_grid, radiate_rotor
+from nps.trim import TRIM_COLUMNS, trim_row
+
+OBSERVER_COLUMNS = ("observer", "x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps")
+
+
+def run(inputs: dict, outputs: dict, params: dict) -> str:
+    rotors = list(params["rotors"])
+    model = ThicknessModel(params["thickness"], tuple(float(f) for f in params["chord_fractions"]))
+    samples = int(params["samples_per_rev"])
+    trim = read_table(inputs["trim"], required=TRIM_COLUMNS)
+    observers = read_table(inputs["observers"], required=OBSERVER_COLUMNS)
+    obs = Observers(observers[["x_m", "y_m", "z_m"]].to_numpy(float), observers[["vx_mps", "vy_mps", "vz_mps"]].to_numpy(float))
+    grid = common_grid(trim_row(trim, rotors[0], str(inputs["trim"])), samples)
+    report = []
+    for name in rotors:
+        disk_path = rotor_path(inputs["disks"], name)
+        disk = read_table(disk_path, required=DISK_COLUMNS)
+        hinge = float(params["hinge_offsets_m"][name])
+        try:
+            pressure = radiate_rotor(disk, trim_row(trim, name, str(inputs["trim"])), obs, grid, thickness=model, hinge_offset_m=hinge)
+        except AcousticsError as exc:
+            raise AcousticsError(f"{disk_path} / {inputs['observers']}: {exc}") from None
+        table = signals_table(observers["observer"].to_numpy(), (LOADING, THICKNESS), pressure, grid, total=False)
+        meta = {"aircraft": params["aircraft"], "segment": params["segment"], "obsset": params["obsset"],
+                "variant": params["variant"], "rotor": name, "reference_rotor": rotors[0], "samples_per_rev": samples,
+                "thickness": model.kind, "chord_fractions": list(model.chord_fractions), "hinge_offset_m": hinge,
+                "inputs": [str(disk_path), str(inputs["trim"]), str(inputs["observers"])]}
+        write_table(table, rotor_path(outputs["signals"], name), stage="acoustics", metadata=meta)
+        report += [f"rotor {name} {group}: p_Pa min {pressure[:, g].min():.6g}, max {pressure[:, g].max():.6g}, "
+                   f"std {pressure[:, g].std():.6g}" for g, group in enumerate((LOADING, THICKNESS))]
+    return "\n".join(report)

@@ -1,0 +1,37 @@
+"""Stage ``bvi_hotspot``: pressure history and spectrum at the BVISPL hotspot with and without BVI, and pressure histories
+
+Stage contract: :mod:`nps.stages`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from nps.io import read_signals, read_table
+from nps.study import hotspot
+
+
+def run(inputs: dict, outputs: dict, params: dict) -> str:
+    """Pressure history and spectrum at the BVISPL hotspot with and without BVI, and pressure histories
+    (BVI loads) at several directions of the hemisphere.
+
+    inputs: ``metrics`` (hemisphere, variant bvi), ``trim``, ``base`` and ``bvi`` (acoustics directories),
+    ``observers``. outputs: ``hotspot``, ``histories`` (PNG). params: ``rotors``, ``harmonics``,
+    ``aircraft``, ``segment``.
+    """
+    from nps.plots.acoustics import pressure_histories
+    from nps.plots.study import bvi_hotspot_figure, summed_signal
+
+    spot = hotspot(read_table(inputs["metrics"]), "bvispl_db")
+    reference = read_table(inputs["trim"]).iloc[0]
+    bpf_hz = float(reference["n_blades"]) * float(reference["omega_rad_s"]) / (2.0 * np.pi)
+    rotors = list(params["rotors"])
+    signals_bvi = read_signals(inputs["bvi"], rotors)
+    base = summed_signal(read_signals(inputs["base"], rotors), spot["observer"])
+    bvi = summed_signal(signals_bvi, spot["observer"])
+    bvi_hotspot_figure(params["aircraft"], params["segment"], spot, base, bvi, bpf_hz, tuple(params["harmonics"]),
+                       outputs["hotspot"])
+    observers = read_table(inputs["observers"], required=("observer", "azimuth_deg", "elevation_deg"))
+    pressure_histories(signals_bvi, observers, outputs["histories"],
+                       title=f"{params['aircraft']} {params['segment']}, hemisphere observers, loads with BVI")
+    return str(spot)

@@ -1,0 +1,30 @@
+"""Stage ``loads``: trimmed blade loads of every rotor of one aircraft in one segment (nps.bet).
+
+inputs: ``trim`` (trim.parquet). outputs: ``loads``, a directory with, per rotor,
+``{rotor}.parquet`` (disk table), ``{rotor}_summary.parquet`` (quantity, value, unit) and
+``{rotor}_history.parquet`` (trim iterations). params: ``rotors`` (rotor name → validated rotor
+configuration, in aircraft order), ``n_psi``, ``n_r`` (disk resolution), ``aircraft``, ``segment``.
+"""
+
+from __future__ import annotations
+
+from nps.bet import DiskGrid, trim_rotor
+from nps.io import read_table, rotor_path, write_table
+from nps.rotor import OperatingPoint, RotorGeometry
+from nps.trim import TRIM_COLUMNS, trim_row
+
+
+def run(inputs: dict, outputs: dict, params: dict) -> str:
+    trim = read_table(inputs["trim"], required=TRIM_COLUMNS)
+    grid = DiskGrid(int(params["n_psi"]), int(params["n_r"]))
+    report = []
+    for name, rotor in params["rotors"].items():
+        geometry = RotorGeometry.from_config(rotor)
+        result = trim_rotor(geometry, OperatingPoint.from_trim_row(trim_row(trim, name, inputs["trim"])), grid)
+        meta = {"aircraft": params["aircraft"], "segment": params["segment"], "rotor": name, "n_psi": grid.n_psi,
+                "n_r": grid.n_r, "inputs": [str(inputs["trim"])]}
+        write_table(result.disk, rotor_path(outputs["loads"], name), stage="loads", metadata=meta)
+        write_table(result.summary(), rotor_path(outputs["loads"], name, "_summary"), stage="loads", metadata=meta)
+        write_table(result.history, rotor_path(outputs["loads"], name, "_history"), stage="loads", metadata=meta)
+        report += [f"rotor {name}:", result.summary().to_string(index=False), result.history.to_string(index=False)]
+    return "\n".join(report)

@@ -1,0 +1,22 @@
+"""Stage ``rotor_maps``: OASPL maps of one rotor alone (e.g. the tail rotor) over its segments.
+
+Stage contract: :mod:`nps.stages`.
+"""
+
+from __future__ import annotations
+
+from nps.io import read_signals, read_table
+
+
+def run(inputs: dict, outputs: dict, params: dict) -> str:
+    """OASPL maps of one rotor alone (e.g. the tail rotor) over its segments.
+
+    inputs: ``signals_<segment>`` (hemisphere acoustics directory of each segment), ``observers``.
+    outputs: ``figure``. params: ``segments``, ``rotor``, ``aircraft``.
+    """
+    from nps.plots.study import rotor_maps, rotor_oaspl
+
+    rotor = params["rotor"]
+    levels = {s: rotor_oaspl(read_signals(inputs[f"signals_{s}"], [rotor])[rotor]) for s in params["segments"]}
+    rotor_maps(params["aircraft"], rotor, levels, read_table(inputs["observers"]), outputs["figure"])
+    return f"rotor {rotor}: segments {list(params['segments'])}"

@@ -1,0 +1,51 @@
+"""Stage ``summary``: one summary row per segment: levels and hotspots, trim state, wall time per stage.
+
+Stage contract: :mod:`nps.stages`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pandas as pd
+
+from nps.io import read_table, rotor_path, write_table
+from nps.study import STAGES, segment_summary
+
+
+def stage_wall_times(benchmark_dir: str | Path, aircraft: str, segment: str) -> dict[str, float]:
+    """Wall time (s) of each stage's jobs for one aircraft and segment, summed over files.
+
+    Reads Snakemake benchmark files ``<benchmark_dir>/<stage>/<aircraft>/<segment>[/…].tsv``
+    (column ``s``); stages without files are absent.
+    """
+    times = {}
+    for stage in STAGES:
+        root = Path(benchmark_dir) / stage / aircraft
+        files = sorted(root.glob(f"{segment}.tsv")) + sorted(root.glob(f"{segment}/**/*.tsv"))
+        if files:
+            times[stage] = float(sum(pd.read_csv(f, sep="\t")["s"].iloc[-1] for f in files))
+    return times
+
+
+def run(inputs: dict, outputs: dict, params: dict) -> str:
+    """One summary row per segment: levels and hotspots, trim state, wall time per stage.
+
+    inputs: ``trim_<segment>``, ``loads_<segment>`` (directory), ``metrics_<segment>_<variant>``.
+    outputs: ``table`` (Parquet, without the wall times, so it stays bit-reproducible) and ``csv``
+    (with them). params: ``segments``, ``rotors``, ``variants`` (segment → variants),
+    ``benchmarks`` (Snakemake benchmark directory), ``aircraft``.
+    """
+    aircraft = params["aircraft"]
+    rows = []
+    for segment in params["segments"]:
+        trim = read_table(inputs[f"trim_{segment}"])
+        loads = {r: read_table(rotor_path(inputs[f"loads_{segment}"], r, "_summary")) for r in params["rotors"]}
+        metrics = {v: read_table(inputs[f"metrics_{segment}_{v}"]) for v in params["variants"][segment]}
+        rows.append(segment_summary(aircraft, segment, trim, loads, metrics,
+                                    stage_wall_times(params["benchmarks"], aircraft, segment)))
+    table = pd.DataFrame(rows)
+    wall = [c for c in table.columns if c.startswith("wall_")]
+    write_table(table.drop(columns=wall), outputs["table"], stage="summary", metadata={"aircraft": aircraft})
+    table.to_csv(outputs["csv"], index=False, float_format="%.6g")
+    return table.to_string()

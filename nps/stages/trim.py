@@ -1,0 +1,23 @@
+"""Stage ``trim``: aircraft trim of one aircraft in one mission segment (nps.trim).
+
+inputs: none. outputs: ``trim`` (trim.parquet, one row per rotor, :data:`nps.trim.TRIM_COLUMNS`).
+params: ``aircraft_config`` (validated aircraft configuration), ``speeds`` (the mission segment's entry for
+this aircraft: forward_speed_mps, climb_speed_mps, optional rotor_omega_scale), ``atmosphere``
+(altitude_m, isa_delta_K, relative_humidity_pct), ``segment`` (segment id).
+"""
+
+from __future__ import annotations
+
+from nps.atmosphere import isa
+from nps.io import write_table
+from nps.trim import FlightCondition, trim_aircraft
+
+
+def run(inputs: dict, outputs: dict, params: dict) -> str:
+    aircraft, speeds, atm = params["aircraft_config"], params["speeds"], params["atmosphere"]
+    atmosphere = isa(atm["altitude_m"], atm["isa_delta_K"], atm["relative_humidity_pct"])
+    flight = FlightCondition(speeds["forward_speed_mps"], speeds["climb_speed_mps"], atmosphere)
+    table = trim_aircraft(aircraft, flight, speeds.get("rotor_omega_scale"))
+    write_table(table, outputs["trim"], stage="trim",
+                metadata={"aircraft": aircraft["name"], "segment": params["segment"], "speeds": dict(speeds)})
+    return table.to_string()

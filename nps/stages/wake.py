@@ -1,0 +1,68 @@
+"""Stage ``wake``: tip-vortex wake and BVI loads of every rotor of one aircraft in one segment.
+
+Per rotor: the Beddoes prescribed wake from its trimmed loads (nps.wake) with a legacy-VTK series
+for ParaView, and the BVI loads, i.e. the wake's induced velocity added to the trimmed loads
+without re-trim (nps.bvi).
+
+inputs: ``trim`` (trim.parquet), ``loads`` (directory of the loads stage). outputs: ``wake``
+(directory: ``{rotor}.parquet`` wake geometry, :data:`nps.wake.WAKE_COLUMNS`, one row per vortex
+node per snapshot over one blade passage, and ``{rotor}_vtk/``), ``bvi`` (directory:
+``{rotor}.parquet``, BVI disk table with the loads' columns). params: ``rotors`` (rotor name →
+validated rotor configuration), ``wake`` (config ``wake`` section: A, B, C, D, core_radius_chords,
+core_growth), ``revolutions`` (wake age kept), ``steps_per_rev`` (vortex segments per revolution),
+``aircraft``, ``segment``; optional ``step_deg`` (snapshot spacing, default 5°), ``unsteady``
+(Sears response, default true).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from nps import bvi, vtk, wake
+from nps.io import read_table, rotor_path, write_table
+from nps.rotor import RotorGeometry, RotorMotion
+from nps.trim import TRIM_COLUMNS, trim_row
+
+SUMMARY_COLUMNS = ("quantity", "value", "unit")
+
+
+def _vtk_series(directory: Path, rotor: str, state: wake.WakeState, table, psi, motion: RotorMotion, root_m: float) -> None:
+    """Legacy-VTK series of the wake snapshots with the blade lines (ParaView: ``<rotor>.vtk.series``)."""
+    frames = []
+    for step, psi_b in enumerate(psi):
+        blades_h = wake.blade_lines_hub(state, psi_b, root_m, n_points=8)
+        blades_g = wake.hub_to_ground(blades_h, psi_b / state.omega_rad_s, motion.hub_position_m, motion.velocity_mps, motion.r_gh)
+        frames.append((psi_b / state.omega_rad_s,
+                       vtk.wake_step_polydata(table[table["step"] == step], blades_g, f"NPS wake {rotor} step {step}")))
+    vtk.write_series(directory, rotor, frames)
+
+
+def run(inputs: dict, outputs: dict, params: dict) -> str:
+    model = wake.WakeModel.from_config(params["wake"], params["revolutions"], int(params["steps_per_rev"]))
+    bvi_model = bvi.BVIModel(unsteady=bool(params.get("unsteady", True)))
+    step_deg = float(params.get("step_deg", 5.0))
+    trim = read_table(inputs["trim"], required=TRIM_COLUMNS)
+    wake_dir, bvi_dir = Path(outputs["wake"]), Path(outputs["bvi"])
+    report = []
+    for name, rotor in params["rotors"].items():
+        loads_path = rotor_path(inputs["loads"], name)
+        summary_path = rotor_path(inputs["loads"], name, "_summary")
+        paths = [str(loads_path), str(summary_path), str(inputs["trim"])]
+        disk = read_table(loads_path, required=bvi.DISK_COLUMNS)
+        ct = bvi.summary_value(read_table(summary_path, required=SUMMARY_COLUMNS), "ct", str(summary_path))
+        row = trim_row(trim, name, str(inputs["trim"]))
+        meta = {"aircraft": params["aircraft"], "segment": params["segment"], "rotor": name, "wake_model": model.__dict__}
+        # wake geometry snapshots over one blade passage (the wake is periodic in 2π/B)
+        state = bvi.wake_state(disk, row, ct)
+        motion = RotorMotion.from_trim_row(row)
+        psi = wake.snapshot_azimuths(state.n_blades, step_deg)
+        table = wake.wake_table(state, model, psi, motion)
+        write_table(table, rotor_path(wake_dir, name), stage="wake", metadata={**meta, "step_deg": step_deg, "inputs": paths})
+        _vtk_series(wake_dir / f"{name}_vtk", name, state, table, psi, motion, float(disk["r_m"].min() - 0.5 * disk["dr_m"].iloc[0]))
+        # BVI loads: the wake's induced velocity on the blades
+        result = bvi.bvi_loads(disk, row, RotorGeometry.from_config(rotor), ct, model, bvi_model)
+        write_table(result.disk, rotor_path(bvi_dir, name), stage="bvi",
+                    metadata={**meta, "bvi_model": bvi_model.__dict__, "inputs": paths})
+        report.append(f"rotor {name}: {len(table)} wake nodes; peak |dU_P| = {abs(result.d_up_mps).max():.4g} m/s, "
+                      f"peak |dU_T| = {abs(result.d_ut_mps).max():.4g} m/s")
+    return "\n".join(report)

@@ -1,0 +1,30 @@
+"""One code path per stage: the command writes the same bytes as calling the stage's run function."""
+
+from nps.cli import loads as loads_cli
+from nps.cli import trim as trim_cli
+from nps.config import load_aircraft, load_mission
+from nps.stages import loads, trim
+
+
+def test_command_and_run_write_identical_artifacts(tmp_path, repo_root):
+    aircraft_path = repo_root / "config/aircraft/coaxial.yaml"
+    mission_path = repo_root / "config/missions/demo.yaml"
+    assert trim_cli.main(["--aircraft", str(aircraft_path), "--mission", str(mission_path), "--segment", "seg2",
+                          "--out", str(tmp_path / "cli/trim.parquet")]) == 0
+    aircraft = load_aircraft(aircraft_path)
+    speeds = next(s for s in load_mission(mission_path)["segments"] if s["id"] == "seg2")["aircraft"]["coaxial"]
+    atmosphere = {"altitude_m": 0.0, "isa_delta_K": 0.0, "relative_humidity_pct": 70.0}
+    trim.run({}, {"trim": tmp_path / "run/trim.parquet"},
+             {"aircraft_config": aircraft, "speeds": speeds, "atmosphere": atmosphere, "segment": "seg2"})
+    assert (tmp_path / "cli/trim.parquet").read_bytes() == (tmp_path / "run/trim.parquet").read_bytes()
+
+    trim_path = str(tmp_path / "run/trim.parquet")
+    assert loads_cli.main(["--aircraft", str(aircraft_path), "--trim", trim_path, "--n-psi", "36", "--n-r", "10",
+                           "--out-dir", str(tmp_path / "cli/loads")]) == 0
+    loads.run({"trim": trim_path}, {"loads": tmp_path / "run/loads"},
+              {"rotors": {r["name"]: r for r in aircraft["rotors"]}, "n_psi": 36, "n_r": 10, "aircraft": "coaxial",
+               "segment": "seg2"})
+    written = sorted(p.name for p in (tmp_path / "cli/loads").iterdir())
+    assert written == sorted(p.name for p in (tmp_path / "run/loads").iterdir()) and len(written) == 6
+    for name in written:
+        assert (tmp_path / "cli/loads" / name).read_bytes() == (tmp_path / "run/loads" / name).read_bytes(), name
