@@ -35,7 +35,6 @@ import pandas as pd
 from nps import broadband
 from nps.atmosphere import AtmosphereState, absorb_band_levels, apply_line_gain, periodic_absorption_gain
 from nps.signals import signal_arrays
-from nps.rotor import RotorGeometry
 from nps.spectra import (
     LEVEL_FLOOR_DB,
     band_msp,
@@ -513,4 +512,7 @@ def _bands_table(ids: np.ndarray, result: ObserverSetLevels) -> pd.DataFrame:
 
 def rotor_solidities(aircraft: Mapping) -> dict[str, float]:
     """Rotor name → solidity σ = B c/(π R) from a validated aircraft configuration."""
+    # imported here: nps.rotor loads numba (airfoil kernels), which metrics jobs do not need
+    from nps.rotor import RotorGeometry
+
     return {str(r["name"]): RotorGeometry.from_config(r).solidity for r in aircraft["rotors"]}
