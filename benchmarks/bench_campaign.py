@@ -3,8 +3,10 @@
 Copies config/ into a temporary working directory, runs the repository's Snakefile there (warm numba
 cache: the repository's .numba_cache, unless --cold gives it an empty one), then a second time (the
 no-op rerun), and prints both wall times and the per-rule table of benchmarks/campaign_times.py.
+``--study-only`` leaves out the products added after the chapter-7 study (mission footprint and
+certification, tone tables), i.e. the campaign whose time issue 16 measured.
 
-    python benchmarks/bench_campaign.py [--cold] [--keep DIR]
+    python benchmarks/bench_campaign.py [--cold] [--study-only] [--keep DIR]
 """
 
 from __future__ import annotations
@@ -17,6 +19,8 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+import yaml
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -36,12 +40,20 @@ def snakemake(workdir: Path, cache: Path, *args: str) -> float:
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cold", action="store_true", help="empty numba cache (first run compiles every kernel)")
+    ap.add_argument("--study-only", action="store_true", help="without footprint, certification and tone tables")
     ap.add_argument("--keep", type=Path, help="run in this directory and keep it")
     args = ap.parse_args(argv)
     workdir = args.keep or Path(tempfile.mkdtemp(prefix="nps-campaign-"))
     shutil.rmtree(workdir / "results", ignore_errors=True)
     shutil.rmtree(workdir / ".snakemake", ignore_errors=True)
     shutil.copytree(REPO / "config", workdir / "config", dirs_exist_ok=True)
+    if args.study_only:
+        config_path = workdir / "config" / "config.yaml"
+        config = yaml.safe_load(config_path.read_text())
+        for section in ("footprint", "certification"):
+            config.pop(section, None)
+        config.setdefault("outputs", {})["tone_observer_sets"] = []
+        config_path.write_text(yaml.safe_dump(config, sort_keys=False))
     cache = Path(tempfile.mkdtemp(prefix="nps-numba-")) if args.cold else REPO / ".numba_cache"
     full = snakemake(workdir, cache, "-j2", "all")
     noop = snakemake(workdir, cache, "-j2", "all")

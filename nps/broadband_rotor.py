@@ -356,3 +356,28 @@ def disk_outside_bpm_range(disk: pd.DataFrame, medium: bpm.Medium) -> np.ndarray
     speed = np.hypot(disk["ut_mps"].to_numpy(dtype=float), disk["up_mps"].to_numpy(dtype=float))
     return bpm.valid_range(speed, disk["chord_m"].to_numpy(dtype=float), disk["alpha_eff_rad"].to_numpy(dtype=float),
                            medium)["any"]
+
+
+def hub_frame_observers(trim_row, observers_g_m) -> np.ndarray:
+    """Observer positions (n, 3) in a rotor's hub frame H from ground-frame positions at t = 0.
+
+    x_H = R_GHᵀ (x_G − hub_G), with the hub position ``hub_*_m`` and the rotation ``r_gh_ij`` of the
+    rotor's trim row (docs/conventions.md).
+    """
+    hub = np.array([float(trim_row[f"hub_{c}_m"]) for c in "xyz"])
+    r_gh = np.array([[float(trim_row[f"r_gh_{i}{j}"]) for j in range(3)] for i in range(3)])
+    return (np.asarray(observers_g_m, dtype=float) - hub) @ r_gh
+
+
+def trimmed_rotor_broadband_msp(disk: pd.DataFrame, rotor_config, trim_row, observers_g_m, medium: bpm.Medium,
+                                band_numbers, edge: BladeEdge = BladeEdge()) -> np.ndarray:
+    """Total BPM band MSP (Pa², (n_obs, n_band)) of one trimmed rotor of an aircraft at observers given in G.
+
+    ``rotor_config``: the rotor's validated aircraft-configuration entry (B, R, rotation sense);
+    ``trim_row``: its trim-artifact row (Ω, advance ratios, hub and frame at t = 0); observers at their
+    t = 0 positions, taken as moving with the hub (exact for the observer sets that move with the
+    aircraft; for observers fixed on the ground the geometry of t = 0 is used, as Pegg's model does).
+    :func:`rotor_broadband_msp` with its defaults (Doppler on, ≤ 36 azimuths).
+    """
+    return rotor_broadband_msp(disk, RotorGeometry.from_config(rotor_config), OperatingPoint.from_trim_row(trim_row),
+                               hub_frame_observers(trim_row, observers_g_m), medium, band_numbers, edge)["total"]

@@ -219,6 +219,19 @@ def load_mission(path: str | Path) -> dict:
     return data
 
 
+BROADBAND_MODELS = ("pegg", "bpm", "none")
+
+
+def broadband_model(value) -> str:
+    """The broadband model named by a ``models.broadband`` value: ``pegg``, ``bpm`` or ``none``; the
+    boolean spelling of earlier configurations maps true → ``pegg``, false → ``none``."""
+    if value is True or value is False:
+        return "pegg" if value else "none"
+    if value not in BROADBAND_MODELS:
+        raise ValueError(f"models.broadband: expected one of {list(BROADBAND_MODELS)} (or true/false), got {value!r}")
+    return str(value)
+
+
 @dataclass(frozen=True)
 class Campaign:
     """A validated campaign: the config, its aircraft and mission, and the segment list."""
@@ -267,6 +280,20 @@ class Campaign:
             return ["base"]
         without = self.config["models"].get("without_bvi_segments")
         return ["base", "bvi"] if without is None or segment in without else ["bvi"]
+
+    def broadband_model(self) -> str:
+        """``models.broadband`` as a model name (:func:`broadband_model`)."""
+        return broadband_model(self.config["models"]["broadband"])
+
+    def output_option(self, field: str) -> Any:
+        """``outputs.<field>``, or the schema's default when the section or the field is absent."""
+        outputs = self.config.get("outputs", {})
+        return outputs[field] if field in outputs else schema_default("config", f"outputs.{field}")
+
+    def tone_observer_sets(self, segment: str) -> list[str]:
+        """Observer sets of ``segment`` with tone tables and spectra (``outputs.tone_observer_sets``, default all)."""
+        listed = self.config.get("outputs", {}).get("tone_observer_sets")
+        return [name for name in self.observer_sets(segment) if listed is None or name in listed]
 
     def figure_segments(self, kind: str) -> list[str]:
         """Campaign segments listed for a figure family (``figures.<kind>_segments``)."""
@@ -325,6 +352,9 @@ def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", 
         for index, segment_id in enumerate(listed):
             if segment_id not in all_ids:
                 problems.append((f"{where}[{index}]", f"expected one of {all_ids}, got '{segment_id}'"))
+    for index, set_name in enumerate(config.get("outputs", {}).get("tone_observer_sets", [])):
+        if set_name not in config["observer_sets"]:
+            problems.append((f"outputs.tone_observer_sets[{index}]", f"expected one of {list(config['observer_sets'])}, got '{set_name}'"))
     for set_name, obs in config["observer_sets"].items():
         for index, segment_id in enumerate(obs.get("segments", [])):
             if segment_id not in all_ids:

@@ -370,6 +370,7 @@ def metrics_tables(
     hsi_signals: Mapping[str, pd.DataFrame] | None = None,
     broadband_on: bool = True,
     harmonics: tuple[int, int] = (7, 40),
+    broadband_msp: Mapping[str, np.ndarray] | None = None,
 ) -> tuple[pd.DataFrame, pd.DataFrame, ObserverSetLevels]:
     """Metrics and band tables of one aircraft × segment × observer set × variant.
 
@@ -378,6 +379,8 @@ def metrics_tables(
     ``observers``: observers artifact; ``trim``: trim artifact (first row = reference rotor,
     whose BPF defines BVISPL); ``solidity``: rotor → σ (blade area A_b = σ π R², C̄_L = 6 C_T/σ);
     ``atmosphere``: absorption over each rotor's hub-observer distance, or None for none.
+    ``broadband_msp``: rotor → broadband 1/3-octave band MSP (Pa², (n_observers, STUDY_BANDS), observers
+    in ascending id order) computed elsewhere (BPM), used instead of Pegg's when ``broadband_on``.
     Returns (metrics: one row per observer, bands: observer × source × band, the levels
     object with the narrowband tonal spectra, observers in ascending id order).
     """
@@ -388,7 +391,7 @@ def metrics_tables(
     rows = [row for _, row in trim.iterrows()]
     geometry = [_hub_observer_geometry(row, positions) for row in rows]
     summed, dt = _summed_tonal_signals(rows, geometry, signals, hsi_signals, ids, atmosphere)
-    broadband_db = _broadband_band_levels(rows, geometry, solidity, atmosphere) if broadband_on else None
+    broadband_db = _broadband_band_levels(rows, geometry, solidity, atmosphere, broadband_msp) if broadband_on else None
     ref = trim.iloc[0]
     bpf_hz = float(ref["n_blades"]) * float(ref["omega_rad_s"]) / (2.0 * np.pi)
     result = observer_set_metrics(summed, dt, bpf_hz, broadband_db, harmonics, STUDY_BANDS)
@@ -453,22 +456,30 @@ def _summed_tonal_signals(rows, geometry, signals, hsi_signals, ids: np.ndarray,
     return summed, float(time_ref[1] - time_ref[0])
 
 
-def _broadband_band_levels(rows, geometry, solidity: Mapping[str, float],
-                           atmosphere: AtmosphereState | None) -> np.ndarray:
-    """Pegg broadband 1/3-octave levels (dB) (n_observers, STUDY_BANDS), energy-summed over the
-    rotors (trim order), each absorbed at the mid-band frequencies over its hub distance."""
+def _broadband_band_levels(rows, geometry, solidity: Mapping[str, float], atmosphere: AtmosphereState | None,
+                           given_msp: Mapping[str, np.ndarray] | None) -> np.ndarray:
+    """Broadband 1/3-octave levels (dB) (n_observers, STUDY_BANDS), energy-summed over the rotors
+    (trim order), each absorbed at the mid-band frequencies over its hub distance: a rotor's
+    ``given_msp`` (Pa², e.g. BPM) when given, else Pegg's model."""
     centres = third_octave_bands(STUDY_BANDS)["center_hz"]
     bb_msp = np.zeros((geometry[0][0].size, STUDY_BANDS.size))
     for row, (dist, cos_t) in zip(rows, geometry):
-        sigma = float(solidity[row["rotor"]])
-        radius = float(row["radius_m"])
-        rotor = broadband.PeggRotor(
-            thrust_N=float(row["thrust_N"]),
-            tip_speed_mps=float(row["omega_rad_s"]) * radius,
-            blade_area_m2=sigma * np.pi * radius**2,
-            mean_lift_coefficient=broadband.mean_lift_coefficient(float(row["ct"]), sigma),
-        )
-        levels = broadband.band_levels_db(rotor, STUDY_BANDS, dist, cos_t, float(row["speed_of_sound_mps"]))
+        name = row["rotor"]
+        if given_msp is not None:
+            given = np.asarray(given_msp[name], dtype=float)
+            if given.shape != bb_msp.shape:
+                raise ValueError(f"broadband_msp of rotor '{name}': expected shape {bb_msp.shape}, got {given.shape}")
+            levels = level_db(given)
+        else:
+            sigma = float(solidity[name])
+            radius = float(row["radius_m"])
+            rotor = broadband.PeggRotor(
+                thrust_N=float(row["thrust_N"]),
+                tip_speed_mps=float(row["omega_rad_s"]) * radius,
+                blade_area_m2=sigma * np.pi * radius**2,
+                mean_lift_coefficient=broadband.mean_lift_coefficient(float(row["ct"]), sigma),
+            )
+            levels = broadband.band_levels_db(rotor, STUDY_BANDS, dist, cos_t, float(row["speed_of_sound_mps"]))
         if atmosphere is not None:
             levels = absorb_band_levels(levels, centres, dist[:, None], atmosphere)
         bb_msp += msp_from_level(levels)

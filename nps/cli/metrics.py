@@ -3,13 +3,15 @@
 
 Reads the acoustics directory (and optionally the HSI directory) of every rotor, the observer table
 and the trim artifact; writes the metrics table (one row per observer), the band table
-(observer × source × band) and, with ``--figure``, the spectrum of the loudest observer.
+(observer × source × band) and, with ``--figure``, the spectrum of the loudest observer. Broadband:
+Pegg's method (default), BPM blade self-noise from the rotors' disk tables (``--broadband bpm --disks DIR``)
+or none.
 """
 
 from __future__ import annotations
 
 from nps.cli import default, fail, parser, provenance, run_stage
-from nps.config import ConfigError, load_aircraft
+from nps.config import BROADBAND_MODELS, ConfigError, load_aircraft
 from nps.metrics import rotor_solidities
 
 
@@ -25,13 +27,17 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--isa-delta-k", type=float, default=default("atmosphere.isa_delta_K"))
     ap.add_argument("--relative-humidity-pct", type=float, default=default("atmosphere.relative_humidity_pct"))
     ap.add_argument("--no-absorption", action="store_true", help="skip ISO 9613-1 air absorption")
-    ap.add_argument("--no-broadband", action="store_true", help="skip the Pegg broadband source")
+    ap.add_argument("--broadband", choices=BROADBAND_MODELS, default=default("models.broadband"),
+                    help="broadband source: Pegg's method, BPM blade self-noise (needs --disks) or none (default %(default)s)")
+    ap.add_argument("--disks", help="directory of the rotors' disk tables the signals were radiated from (BPM broadband)")
     ap.add_argument("--bvispl-harmonics", type=int, nargs=2, default=default("acoustics.bvispl_harmonics"),
                     metavar=("FIRST", "LAST"))
     ap.add_argument("--out", required=True, help="metrics Parquet (one row per observer)")
     ap.add_argument("--bands-out", required=True, help="1/3-octave band Parquet")
     ap.add_argument("--figure", help="spectrum figure (PNG) of the loudest observer")
     args = ap.parse_args(argv)
+    if args.broadband == "bpm" and not args.disks:
+        return fail("--broadband bpm needs --disks (the loads or bvi directory of the rotors' disk tables)")
     try:
         aircraft = load_aircraft(args.aircraft)
     except ConfigError as error:
@@ -39,9 +45,12 @@ def main(argv: list[str]) -> int:
     atmosphere = {"altitude_m": args.altitude_m, "isa_delta_K": args.isa_delta_k,
                   "relative_humidity_pct": args.relative_humidity_pct}
     params = {"rotors": args.rotor or [r["name"] for r in aircraft["rotors"]], "solidity": rotor_solidities(aircraft),
-              "atmosphere": atmosphere, "broadband": not args.no_broadband, "absorption": not args.no_absorption,
+              "atmosphere": atmosphere, "broadband": args.broadband, "absorption": not args.no_absorption,
               "harmonics": args.bvispl_harmonics, "aircraft": aircraft["name"], "segment": provenance(args.trim, "segment"),
               "obsset": provenance(args.observers, "obsset"), "variant": "base"}
-    inputs = {"signals": args.signals, "trim": args.trim, "observers": args.observers, **({"hsi": args.hsi} if args.hsi else {})}
+    if args.broadband == "bpm":
+        params["rotor_configs"] = {r["name"]: r for r in aircraft["rotors"]}
+    inputs = {"signals": args.signals, "trim": args.trim, "observers": args.observers, **({"hsi": args.hsi} if args.hsi else {}),
+              **({"disks": args.disks} if args.disks else {})}
     outputs = {"metrics": args.out, "bands": args.bands_out, **({"figure": args.figure} if args.figure else {})}
     return run_stage("metrics", inputs, outputs, params, args.debug)

@@ -1,34 +1,81 @@
 """Stage ``metrics``: noise metrics and 1/3-octave bands of an aircraft at one observer set.
 
-Sums the rotors' signals (HSI-processed ones where given), adds Pegg broadband and ISO 9613-1 air
-absorption when asked (nps.metrics) and writes one row per observer and the band table.
+Sums the rotors' signals (HSI-processed ones where given), adds broadband (Pegg or BPM) and ISO 9613-1
+air absorption when asked (nps.metrics) and writes one row per observer and the band table.
 
-inputs: ``signals`` (acoustics directory), optional ``hsi`` (HSI directory), ``trim``, ``observers``.
+inputs: ``signals`` (acoustics directory), optional ``hsi`` (HSI directory), ``trim``, ``observers``;
+``disks`` (directory of the rotors' disk tables, the one the acoustics stage radiated) with BPM broadband.
 outputs: ``metrics`` (observer, elevation_deg, azimuth_deg, oaspl_db, oaspl_dba, bvispl_db, per-source
 levels …), ``bands`` (observer × source × band), ``figure`` (spectrum of the loudest observer).
 params: ``rotors``, ``solidity`` (rotor → σ), ``atmosphere`` (altitude_m, isa_delta_K,
-relative_humidity_pct), ``broadband``, ``absorption`` (booleans), ``harmonics`` (first and last
-main-rotor BPF harmonic of BVISPL), ``aircraft``, ``segment``, ``obsset``, ``variant``.
+relative_humidity_pct), ``broadband`` (``pegg``, ``bpm`` or ``none``; true/false = pegg/none,
+:func:`nps.config.broadband_model`; written to the metadata as given), ``absorption`` (boolean),
+``harmonics`` (first and last main-rotor BPF harmonic of BVISPL), with BPM ``rotor_configs`` (rotor →
+validated aircraft-configuration entry), ``aircraft``, ``segment``, ``obsset``, ``variant``.
+Pegg outside its helicopter main-rotor data range, and BPM on elements outside RP-1218's, are reported
+as warnings (stderr and the report).
 """
 
 from __future__ import annotations
 
+import warnings
+
+import numpy as np
+
 from nps.atmosphere import isa
-from nps.io import read_signals, read_table, write_table
-from nps.metrics import metrics_tables
+from nps.broadband import pegg_outside_range
+from nps.config import broadband_model
+from nps.io import read_signals, read_table, rotor_path, write_table
+from nps.metrics import STUDY_BANDS, metrics_tables
+from nps.trim import trim_row
+
+
+def _bpm_band_msp(inputs: dict, params: dict, trim, observers, atmosphere) -> tuple[dict, list[str]]:
+    """Rotor → BPM band MSP at the observers (ascending ids), and warnings for elements outside RP-1218's range."""
+    from nps.broadband_rotor import (DISK_INPUT_COLUMNS, disk_outside_bpm_range, medium_from_atmosphere,
+                                     trimmed_rotor_broadband_msp)
+
+    medium = medium_from_atmosphere(atmosphere)
+    positions = observers.sort_values("observer", kind="mergesort")[["x_m", "y_m", "z_m"]].to_numpy(dtype=float)
+    out, notes = {}, []
+    for name in params["rotors"]:
+        disk = read_table(rotor_path(inputs["disks"], name), required=DISK_INPUT_COLUMNS)
+        out[name] = trimmed_rotor_broadband_msp(disk, params["rotor_configs"][name], trim_row(trim, name, str(inputs["trim"])),
+                                                positions, medium, STUDY_BANDS)
+        outside = float(np.mean(disk_outside_bpm_range(disk, medium)))
+        if outside > 0.0:
+            notes.append(f"BPM: rotor '{name}': {100 * outside:.0f} % of the blade elements outside RP-1218's data range "
+                         "(Re_c, Mach ≤ 0.21, |α| ≤ 25.2°): extrapolated (docs/models/bpm.md)")
+    return out, notes
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:
     rotors = list(params["rotors"])
+    model = broadband_model(params["broadband"])
     signals = read_signals(inputs["signals"], rotors)
     hsi = read_signals(inputs["hsi"], rotors) if "hsi" in inputs else None
     trim = read_table(inputs["trim"])
     observers = read_table(inputs["observers"])
     atm = params["atmosphere"]
-    atmosphere = isa(atm["altitude_m"], atm["isa_delta_K"], atm["relative_humidity_pct"]) if params["absorption"] else None
+    state = isa(atm["altitude_m"], atm["isa_delta_K"], atm["relative_humidity_pct"])
+    atmosphere = state if params["absorption"] else None
     harmonics = tuple(int(h) for h in params["harmonics"])
+    notes, bpm_msp = [], None
+    if model == "pegg":
+        for name in rotors:
+            row = trim_row(trim, name, str(inputs["trim"]))
+            outside = pegg_outside_range(float(row["radius_m"]), float(row["omega_rad_s"]) * float(row["radius_m"]),
+                                         float(row["thrust_N"]))
+            notes += [f"Pegg: rotor '{name}': {m}; consider models.broadband: bpm (docs/models/broadband_metrics.md)"
+                      for m in outside]
+    elif model == "bpm":
+        if "disks" not in inputs or "rotor_configs" not in params:
+            raise ValueError("broadband 'bpm' needs the input 'disks' (the rotors' disk tables) and the param 'rotor_configs'")
+        bpm_msp, notes = _bpm_band_msp(inputs, params, trim, observers, state)
+    for note in notes:
+        warnings.warn(note)
     table, bands, levels = metrics_tables(signals, observers, trim, params["solidity"], atmosphere, hsi,
-                                          params["broadband"], harmonics)
+                                          model != "none", harmonics, bpm_msp)
     meta = {"aircraft": params["aircraft"], "segment": params["segment"], "obsset": params["obsset"],
             "variant": params["variant"], "bvispl_harmonics": list(harmonics), "absorption": params["absorption"],
             "broadband": params["broadband"], "hsi": hsi is not None}
@@ -40,4 +87,4 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
         loudest_observer_figure(table, bands, levels, trim, harmonics,
                                 f"{params['aircraft']} {params['segment']} {params['obsset']} ({params['variant']})",
                                 outputs["figure"])
-    return table.describe().to_string()
+    return "\n".join(notes + [table.describe().to_string()])

@@ -7,25 +7,30 @@ with the aircraft, without air absorption, referred to the reference radius by s
 inputs: ``signals`` (acoustics directory of the far-field hemisphere set), optional ``hsi`` (its HSI
 directory: the HSI-processed tonal total replaces thickness + loading), ``trim``, ``observers``.
 outputs: ``hemisphere`` (Parquet, one row per observer × source × band).
-params: ``rotors``, ``solidity`` (rotor → σ), ``broadband`` (bool), ``reference_radius_m``,
+params: ``rotors``, ``solidity`` (rotor → σ), ``broadband`` (``pegg`` or ``none``, true/false; BPM is not
+available here yet: an error), ``reference_radius_m``,
 ``aircraft``, ``segment``, ``obsset``, ``variant``.
 """
 
 from __future__ import annotations
 
+from nps.config import broadband_model
 from nps.io import read_signals, read_table, write_table
 from nps.source_hemisphere import source_hemisphere_table
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:
     rotors = list(params["rotors"])
+    model = broadband_model(params["broadband"])
+    if model == "bpm":
+        raise ValueError("source_hemisphere: models.broadband 'bpm' is not available for source hemispheres yet; use pegg or none")
     signals = read_signals(inputs["signals"], rotors)
     hsi = read_signals(inputs["hsi"], rotors) if "hsi" in inputs else None
     table = source_hemisphere_table(signals, read_table(inputs["observers"]), read_table(inputs["trim"]),
-                                    params["solidity"], hsi, bool(params["broadband"]),
+                                    params["solidity"], hsi, model == "pegg",
                                     float(params["reference_radius_m"]))
     meta = {"aircraft": params["aircraft"], "segment": params["segment"], "obsset": params["obsset"],
-            "variant": params["variant"], "broadband": bool(params["broadband"]), "hsi": hsi is not None,
+            "variant": params["variant"], "broadband": model == "pegg", "hsi": hsi is not None,
             "reference_radius_m": float(params["reference_radius_m"]), "absorption": False,
             "inputs": [str(inputs["signals"]), str(inputs["trim"]), str(inputs["observers"])]}
     write_table(table, outputs["hemisphere"], stage="source_hemisphere", metadata=meta)

@@ -19,7 +19,6 @@ rule observers:
     benchmark:
         bench_path("observers", "{aircraft}/{segment}/{obsset}")
     threads: 1
-    group: "prepare"
     resources:
         mem_mb=job_mem_mb("observers"),
         runtime=job_runtime("observers"),
@@ -30,7 +29,7 @@ rule observers:
 rule acoustics:
     input:
         # every rotor's trimmed loads (variant base) or loads with the wake's induced velocity (variant bvi)
-        disks=lambda wildcards: f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}/{'bvi' if wildcards.variant == 'bvi' else 'loads'}",
+        disks=variant_disks,
         trim=f"{BASE}/trim.parquet",
         observers=f"{BASE}/observers/{{obsset}}.parquet",
     output:
@@ -48,7 +47,6 @@ rule acoustics:
     benchmark:
         bench_path("acoustics", "{aircraft}/{segment}/{obsset}_{variant}")
     threads: job_threads("acoustics")
-    group: "radiate"
     resources:
         mem_mb=job_mem_mb("acoustics"),
         runtime=job_runtime("acoustics"),

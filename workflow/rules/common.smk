@@ -109,11 +109,20 @@ def antitorque_rotors(aircraft):
 
 # used by metrics.smk
 def metrics_signal_inputs(wildcards):
-    """Pressure-signal directory of the aircraft (and its HSI-processed version in HSI segments)."""
+    """Pressure-signal directory of the aircraft (and its HSI-processed version in HSI segments; the disk
+    tables the signals were radiated from with BPM broadband)."""
     inputs = {"signals": signals_dir("acoustics").format(**wildcards)}
     if wildcards.segment in CAMPAIGN.hsi_segments():
         inputs["hsi"] = signals_dir("hsi").format(**wildcards)
+    if CAMPAIGN.broadband_model() == "bpm":
+        inputs["disks"] = variant_disks(wildcards)
     return inputs
+
+
+# used by acoustics.smk and metrics.smk
+def variant_disks(wildcards):
+    """Disk-table directory of a load variant: the trimmed loads (base) or the loads with the wake's induced velocity (bvi)."""
+    return f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}/{'bvi' if wildcards.variant == 'bvi' else 'loads'}"
 
 
 # used by figures.smk

@@ -28,7 +28,6 @@ rule rotor_figures:
     benchmark:
         bench_path("rotor_figures")
     threads: 1
-    group: "figures"
     resources:
         mem_mb=job_mem_mb("rotor_figures"),
         runtime=job_runtime("rotor_figures"),

@@ -19,7 +19,6 @@ rule hsi:
     benchmark:
         bench_path("hsi", "{aircraft}/{segment}/{obsset}_{variant}")
     threads: job_threads("hsi")
-    group: "radiate"
     resources:
         mem_mb=job_mem_mb("hsi"),
         runtime=job_runtime("hsi"),
@@ -49,7 +48,6 @@ rule hsi_figure:
     benchmark:
         bench_path("hsi_figure", "{aircraft}/{segment}/{obsset}_{variant}")
     threads: 1
-    group: "radiate"
     resources:
         mem_mb=job_mem_mb("hsi_figure"),
         runtime=job_runtime("hsi_figure"),

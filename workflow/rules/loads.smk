@@ -18,7 +18,6 @@ rule loads:
     benchmark:
         bench_path("loads")
     threads: 1
-    group: "prepare"
     resources:
         mem_mb=job_mem_mb("loads"),
         runtime=job_runtime("loads"),

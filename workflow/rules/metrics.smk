@@ -1,5 +1,5 @@
 # Noise metrics: OASPL, OASPL_A, BVISPL, PNL(T), per-source levels and 1/3-octave bands per aircraft x
-# segment x observer set x variant, from the summed rotor signals (+ HSI, Pegg broadband, ISO 9613-1
+# segment x observer set x variant, from the summed rotor signals (+ HSI, Pegg or BPM broadband, ISO 9613-1
 # absorption when the models are on): nps.stages.metrics.
 rule metrics:
     input:
@@ -24,13 +24,14 @@ rule metrics:
         broadband=config["models"]["broadband"],
         absorption=config["models"]["absorption"],
         harmonics=config["acoustics"]["bvispl_harmonics"],
+        # BPM broadband: blade count, radius and rotation sense of each rotor
+        **({"rotor_configs": rotor_configs} if CAMPAIGN.broadband_model() == "bpm" else {}),
         code=code("metrics"),
     log:
         log_path("metrics", "{aircraft}/{segment}/{obsset}_{variant}"),
     benchmark:
         bench_path("metrics", "{aircraft}/{segment}/{obsset}_{variant}")
     threads: 1
-    group: "radiate"
     resources:
         mem_mb=job_mem_mb("metrics"),
         runtime=job_runtime("metrics"),

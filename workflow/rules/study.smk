@@ -25,7 +25,6 @@ rule study_maps:
     benchmark:
         bench_path("study_maps", "{aircraft}")
     threads: 1
-    group: "figures"
     resources:
         mem_mb=job_mem_mb("study_maps"),
         runtime=job_runtime("study_maps"),
@@ -54,7 +53,6 @@ rule rotor_maps:
     benchmark:
         bench_path("rotor_maps", "{aircraft}/{rotor}")
     threads: 1
-    group: "figures"
     resources:
         mem_mb=job_mem_mb("rotor_maps"),
         runtime=job_runtime("rotor_maps"),
@@ -94,7 +92,6 @@ rule bvi_hotspot:
     benchmark:
         bench_path("bvi_hotspot")
     threads: 1
-    group: "figures"
     resources:
         mem_mb=job_mem_mb("bvi_hotspot"),
         runtime=job_runtime("bvi_hotspot"),
@@ -125,7 +122,6 @@ rule summary:
     benchmark:
         bench_path("summary", "{aircraft}")
     threads: 1
-    group: "figures"
     resources:
         mem_mb=job_mem_mb("summary"),
         runtime=job_runtime("summary"),

@@ -14,7 +14,6 @@ rule trim:
     benchmark:
         bench_path("trim")
     threads: 1
-    group: "prepare"
     resources:
         mem_mb=job_mem_mb("trim"),
         runtime=job_runtime("trim"),

@@ -1,0 +1,41 @@
+"""``python -m nps tones``: tone table (level and phase of each BPF harmonic, per rotor and total) and
+narrowband spectra of an aircraft at one observer set (stage nps.stages.tones).
+
+Reads the acoustics directory of every rotor and the trim artifact; writes the tone table of every observer
+(Parquet), its rows for the selected observers (CSV) and their narrowband line spectra (Parquet). The selected
+observers are the ``--loudest`` ones (mean-square total pressure) and those listed with ``--observer``.
+"""
+
+from __future__ import annotations
+
+from nps.cli import default, fail, parser, provenance, run_stage
+from nps.config import ConfigError, load_aircraft
+from nps.io import rotor_path
+
+
+def main(argv: list[str]) -> int:
+    ap = parser("tones", __doc__)
+    ap.add_argument("--aircraft", required=True, help="aircraft YAML (rotor names and order; the first is the reference)")
+    ap.add_argument("--trim", required=True, help="trim.parquet")
+    ap.add_argument("--signals", required=True, help="acoustics directory of the rotors' signals")
+    ap.add_argument("--rotor", nargs="+", help="rotor names (default: every rotor of the aircraft)")
+    ap.add_argument("--harmonics", type=int, default=default("outputs.tone_harmonics"),
+                    help="BPF harmonics per source (default %(default)s)")
+    ap.add_argument("--loudest", type=int, default=default("outputs.spectra_loudest"),
+                    help="select the N loudest observers (default %(default)s)")
+    ap.add_argument("--observer", type=int, nargs="+", default=[], help="also select these observer ids")
+    ap.add_argument("--out", required=True, help="tone table Parquet (every observer)")
+    ap.add_argument("--csv", required=True, help="tone table CSV (selected observers)")
+    ap.add_argument("--spectra-out", required=True, help="narrowband spectra Parquet (selected observers)")
+    args = ap.parse_args(argv)
+    try:
+        aircraft = load_aircraft(args.aircraft)
+    except ConfigError as error:
+        return fail(str(error))
+    rotors = args.rotor or [r["name"] for r in aircraft["rotors"]]
+    first = str(rotor_path(args.signals, rotors[0]))  # its metadata names the observer set and the variant
+    params = {"rotors": rotors, "harmonics": args.harmonics, "loudest": args.loudest, "observers": args.observer,
+              "aircraft": aircraft["name"], "segment": provenance(args.trim, "segment"),
+              "obsset": provenance(first, "obsset"), "variant": provenance(first, "variant") or "base"}
+    outputs = {"tones": args.out, "tones_csv": args.csv, "spectra": args.spectra_out}
+    return run_stage("tones", {"signals": args.signals, "trim": args.trim}, outputs, params, args.debug)

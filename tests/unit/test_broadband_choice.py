@@ -1,0 +1,158 @@
+"""``models.broadband: pegg | bpm | none`` in the metrics stage (nps.stages.metrics, nps.config.broadband_model,
+nps.broadband_rotor.trimmed_rotor_broadband_msp)."""
+
+import copy
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from nps.atmosphere import isa
+from nps.broadband_rotor import hub_frame_observers, medium_from_atmosphere, rotor_broadband_msp
+from nps.config import ConfigError, broadband_model, load_aircraft, read_yaml, validate
+from nps.io import read_metadata, read_table, write_table
+from nps.metrics import STUDY_BANDS, rotor_solidities
+from nps.rotor import OperatingPoint, RotorGeometry
+from nps.spectra import level_db
+from nps.stages.metrics import run
+from tests.trim_tables import complete_trim
+
+HUB = np.array([1.0, 2.0, 3.0])
+R_GH = np.diag([-1.0, -1.0, 1.0])  # main rotor without shaft tilt: x_H aft, y_H starboard
+OBSERVERS_G = np.array([[31.0, 2.0, -40.0], [1.0, 32.0, 3.5], [-45.0, -10.0, -20.0]])
+
+
+def test_broadband_model_spellings():
+    assert [broadband_model(v) for v in (True, False, "pegg", "bpm", "none")] == ["pegg", "none", "pegg", "bpm", "none"]
+    with pytest.raises(ValueError, match="models.broadband"):
+        broadband_model("maybe")
+    config = read_yaml("config/config.yaml")
+    for value in ("pegg", "bpm", "none", True, False):
+        validate(dict(config, models=dict(config["models"], broadband=value)), "config", "c.yaml")
+    with pytest.raises(ConfigError, match="models.broadband"):
+        validate(dict(config, models=dict(config["models"], broadband="bmp")), "config", "c.yaml")
+
+
+def test_hub_frame_observers_inverts_the_trim_frame():
+    row = {"hub_x_m": HUB[0], "hub_y_m": HUB[1], "hub_z_m": HUB[2],
+           **{f"r_gh_{i}{j}": R_GH[i, j] for i in range(3) for j in range(3)}}
+    np.testing.assert_allclose(hub_frame_observers(row, OBSERVERS_G) @ R_GH.T + HUB, OBSERVERS_G, rtol=1e-14)
+    np.testing.assert_allclose(hub_frame_observers(row, OBSERVERS_G)[0], [-30.0, 0.0, -43.0])
+
+
+def _aircraft():
+    aircraft = copy.deepcopy(load_aircraft("config/aircraft/helicopter.yaml"))
+    aircraft["rotors"] = aircraft["rotors"][:1]
+    return aircraft
+
+
+def _disk(rotor):
+    """Hovering main rotor disk table (36 azimuths × 8 stations), uniform inflow, 5° angle of attack."""
+    n_psi, n_r, radius, omega = 36, 8, rotor["radius_m"], rotor["omega_rad_s"]
+    edges = np.linspace(rotor["root_cutout_m"], radius, n_r + 1)
+    r = 0.5 * (edges[1:] + edges[:-1])
+    return pd.DataFrame({
+        "psi_rad": np.repeat(2 * np.pi * np.arange(n_psi) / n_psi, n_r), "r_m": np.tile(r, n_psi),
+        "dr_m": np.tile(np.diff(edges), n_psi), "chord_m": rotor["chord_m"], "beta_rad": 0.03,
+        "ut_mps": np.tile(omega * r, n_psi), "up_mps": 10.0, "alpha_eff_rad": np.radians(5.0),
+    })
+
+
+def _write_inputs(tmp_path, aircraft):
+    rotor = aircraft["rotors"][0]
+    trim = complete_trim(pd.DataFrame([{
+        "rotor": "main", "n_blades": np.int32(rotor["n_blades"]), "radius_m": rotor["radius_m"], "omega_rad_s": rotor["omega_rad_s"],
+        "thrust_N": 5.0e4, "ct": 0.005, "hub_x_m": HUB[0], "hub_y_m": HUB[1], "hub_z_m": HUB[2],
+        **{f"r_gh_{i}{j}": R_GH[i, j] for i in range(3) for j in range(3)}}]))
+    write_table(trim, tmp_path / "trim.parquet", stage="test")
+    observers = pd.DataFrame({"observer": np.int32([2, 0, 1]), "x_m": OBSERVERS_G[:, 0], "y_m": OBSERVERS_G[:, 1],
+                              "z_m": OBSERVERS_G[:, 2], "vx_mps": 0.0, "vy_mps": 0.0, "vz_mps": 0.0,
+                              "elevation_deg": 0.0, "azimuth_deg": 0.0})
+    write_table(observers, tmp_path / "obs.parquet", stage="test")
+    n = 256
+    time = np.arange(n) * (2 * np.pi / rotor["omega_rad_s"]) / n
+    p = np.cos(2 * np.pi * 4 * np.arange(n) / n)
+    signal = pd.DataFrame({"observer": np.repeat(np.int32([0, 1, 2]), 2 * n), "group": np.tile(np.repeat(["loading", "thickness"], n), 3),
+                           "time_s": np.tile(time, 6), "p_Pa": np.tile(p, 6)})
+    write_table(signal, tmp_path / "sig" / "main.parquet", stage="test")
+    write_table(_disk(rotor), tmp_path / "loads" / "main.parquet", stage="test")
+    return trim, observers
+
+
+def _run(tmp_path, aircraft, broadband, absorption=False, **extra):
+    inputs = {"signals": tmp_path / "sig", "trim": tmp_path / "trim.parquet", "observers": tmp_path / "obs.parquet",
+              "disks": tmp_path / "loads"}
+    outputs = {"metrics": tmp_path / f"m_{broadband}.parquet", "bands": tmp_path / f"b_{broadband}.parquet"}
+    params = {"rotors": ["main"], "solidity": rotor_solidities(aircraft),
+              "atmosphere": {"altitude_m": 0.0, "isa_delta_K": 0.0, "relative_humidity_pct": 70.0},
+              "broadband": broadband, "absorption": absorption, "harmonics": [7, 40], "aircraft": "helicopter",
+              "segment": "seg1", "obsset": "obs", "variant": "base", **extra}
+    run(inputs, outputs, params)
+    return read_table(outputs["metrics"]), read_table(outputs["bands"])
+
+
+def test_bpm_broadband_is_the_rotor_average_at_the_hub_frame_observers(tmp_path):
+    """With ``bpm`` the band table's broadband levels are rotor_broadband_msp's total at the observers in H
+    (ascending ids), to 1e-9 dB; absorption lowers them; the metadata keeps the configured value."""
+    aircraft = _aircraft()
+    trim, observers = _write_inputs(tmp_path, aircraft)
+    configs = {"main": aircraft["rotors"][0]}
+    metrics, bands = _run(tmp_path, aircraft, "bpm", rotor_configs=configs)
+    row = trim.iloc[0]
+    order = np.argsort(observers["observer"].to_numpy())
+    direct = rotor_broadband_msp(_disk(aircraft["rotors"][0]), RotorGeometry.from_config(aircraft["rotors"][0]),
+                                 OperatingPoint.from_trim_row(row), hub_frame_observers(row, OBSERVERS_G[order]),
+                                 medium_from_atmosphere(isa(0.0)), STUDY_BANDS)["total"]
+    broadband = bands[bands.source == "broadband"].sort_values(["observer", "band"]).level_db.to_numpy()
+    np.testing.assert_allclose(broadband, level_db(direct).reshape(-1), atol=1e-9)
+    assert read_metadata(tmp_path / "m_bpm.parquet")["broadband"] == "bpm"
+    absorbed, _ = _run(tmp_path, aircraft, "bpm", absorption=True, rotor_configs=configs)
+    assert np.all(absorbed.oaspl_broadband_db < metrics.oaspl_broadband_db)
+    with pytest.raises(ValueError, match="disks"):
+        _run(tmp_path, aircraft, "bpm")
+
+
+def test_pegg_spellings_agree_and_warn_outside_the_data_range(tmp_path):
+    """``true`` and ``pegg`` give the same tables; a 5 kN rotor warns (Pegg outside its range); ``none``
+    has no broadband source and no warning."""
+    aircraft = _aircraft()
+    _write_inputs(tmp_path, aircraft)
+    legacy, legacy_bands = _run(tmp_path, aircraft, True)
+    named, named_bands = _run(tmp_path, aircraft, "pegg")
+    pd.testing.assert_frame_equal(legacy, named)
+    pd.testing.assert_frame_equal(legacy_bands, named_bands)
+    assert read_metadata(tmp_path / "m_True.parquet")["broadband"] is True
+    trim = read_table(tmp_path / "trim.parquet").assign(thrust_N=5.0e3)
+    write_table(trim, tmp_path / "trim.parquet", stage="test")
+    with pytest.warns(UserWarning, match="thrust_N=5000 outside Pegg"):
+        _run(tmp_path, aircraft, "pegg")
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        silent, silent_bands = _run(tmp_path, aircraft, "none")
+    assert "oaspl_broadband_db" not in silent.columns and "broadband" not in set(silent_bands.source)
+
+
+def test_metrics_command_chooses_the_model(tmp_path, capsys, repo_root):
+    """``python -m nps metrics --broadband bpm --disks DIR`` runs BPM; without --disks it stops with one line."""
+    from nps.__main__ import main as nps_main
+
+    aircraft = _aircraft()
+    _write_inputs(tmp_path, aircraft)
+    args = ["metrics", "--aircraft", str(repo_root / "config/aircraft/helicopter.yaml"), "--rotor", "main",
+            "--trim", str(tmp_path / "trim.parquet"), "--observers", str(tmp_path / "obs.parquet"),
+            "--signals", str(tmp_path / "sig"), "--out", str(tmp_path / "m.parquet"), "--bands-out", str(tmp_path / "b.parquet"),
+            "--no-absorption", "--broadband", "bpm"]
+    assert nps_main(args) == 2 and "--disks" in capsys.readouterr().err
+    assert nps_main(args + ["--disks", str(tmp_path / "loads")]) == 0
+    assert read_metadata(tmp_path / "m.parquet")["broadband"] == "bpm"
+    assert "oaspl_broadband_db" in read_table(tmp_path / "m.parquet").columns
+
+
+def test_source_hemisphere_refuses_bpm_before_reading():
+    """The source-hemisphere product has Pegg or no broadband: ``bpm`` is a clear error, not Pegg in disguise."""
+    from nps.stages.source_hemisphere import run as source_hemisphere
+
+    with pytest.raises(ValueError, match="'bpm' is not available for source hemispheres"):
+        source_hemisphere({"signals": "missing"}, {}, {"rotors": ["main"], "broadband": "bpm"})
