@@ -113,15 +113,28 @@ def absorb_msp(frequency_hz, msp_pa2, distance_m, state: AtmosphereState) -> np.
     return np.asarray(msp_pa2, dtype=float) * 10.0 ** (-loss / 10.0)
 
 
+def periodic_absorption_gain(n_samples: int, dt_s: float, distance_m, state: AtmosphereState) -> np.ndarray:
+    """Amplitude gain 10^(−α(f) r / 20) (−) of the Fourier lines f_k = k/(N dt), k = 0…N/2, of a
+    periodic record of N = ``n_samples`` samples every ``dt_s`` s, over ``distance_m`` (m; scalar
+    or array): shape distance_m.shape + (N//2 + 1,)."""
+    f = np.fft.rfftfreq(n_samples, dt_s)
+    r = np.asarray(distance_m, dtype=float)[..., None]
+    return 10.0 ** (-_absorption_loss_db(f, r, state) / 20.0)
+
+
+def apply_line_gain(p_pa, gain) -> np.ndarray:
+    """Periodic record p (Pa, time on the last axis, N samples) with each Fourier line scaled by
+    ``gain`` (shape broadcasting against p.shape[:-1] + (N//2 + 1,)), zero phase."""
+    p = np.asarray(p_pa, dtype=float)
+    return np.fft.irfft(np.fft.rfft(p, axis=-1) * gain, n=p.shape[-1], axis=-1)
+
+
 def absorb_periodic_signal(p_pa, dt_s: float, distance_m, state: AtmosphereState) -> np.ndarray:
     """Periodic pressure record (Pa, time on the last axis) after absorption over ``distance_m``.
 
-    Each Fourier line of the record is scaled by 10^(−α(f) r / 20) (zero phase): exact for a
-    record that is one period of the signal. ``distance_m``: scalar or one value per record
-    (shape p.shape[:-1]).
+    Each Fourier line of the record is scaled by 10^(−α(f) r / 20) (zero phase,
+    :func:`periodic_absorption_gain`): exact for a record that is one period of the signal.
+    ``distance_m``: scalar or one value per record (shape p.shape[:-1]).
     """
     p = np.asarray(p_pa, dtype=float)
-    f = np.fft.rfftfreq(p.shape[-1], dt_s)
-    r = np.asarray(distance_m, dtype=float)[..., None]
-    gain = 10.0 ** (-_absorption_loss_db(f, r, state) / 20.0)
-    return np.fft.irfft(np.fft.rfft(p, axis=-1) * gain, n=p.shape[-1], axis=-1)
+    return apply_line_gain(p, periodic_absorption_gain(p.shape[-1], dt_s, distance_m, state))

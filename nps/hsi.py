@@ -40,7 +40,6 @@ from typing import Mapping, Sequence
 
 import numpy as np
 import pandas as pd
-from numba import njit, prange
 
 from nps.signals import signal_arrays
 from nps.rotor import RotorMotion
@@ -49,9 +48,6 @@ from nps.rotor import RotorMotion
 R0_OVER_RADIUS = 3.09
 #: Azimuth samples per revolution for the search of max M_r (refined by a parabola).
 MACH_SAMPLES_PER_REV = 720
-#: Relative tolerance below which a pressure jump in the fitted signal is not a shock.
-_JUMP_RTOL = 1e-10
-
 OBSERVER_COLUMNS = ("observer", "x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps")
 
 
@@ -116,83 +112,6 @@ class HsiRotor:
 
 
 # --------------------------------------------------------------------------- kinematics
-@njit(cache=True)
-def _delay(d, v, c):
-    """Propagation time Δ > 0 with |d + v Δ| = c Δ (|v| < c): closed form of the quadratic."""
-    a = c * c - (v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
-    b = d[0] * v[0] + d[1] * v[1] + d[2] * v[2]
-    dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
-    return (b + np.sqrt(b * b + a * dd)) / a
-
-
-@njit(cache=True)
-def _tip_sample(hub0, vel, r_gh, radius, omega, sign, c, x0, vo, tau, psi):
-    """(M_r, radiation distance) of the sound a blade tip at azimuth ψ emits at source time τ."""
-    cp = np.cos(psi)
-    sp = sign * np.sin(psi)
-    dcp = -np.sin(psi)
-    dsp = sign * np.cos(psi)
-    hx = hub0[0] + vel[0] * tau
-    hy = hub0[1] + vel[1] * tau
-    hz = hub0[2] + vel[2] * tau
-    dx = x0[0] + vo[0] * tau - hx - radius * (r_gh[0, 0] * cp + r_gh[0, 1] * sp)
-    dy = x0[1] + vo[1] * tau - hy - radius * (r_gh[1, 0] * cp + r_gh[1, 1] * sp)
-    dz = x0[2] + vo[2] * tau - hz - radius * (r_gh[2, 0] * cp + r_gh[2, 1] * sp)
-    a = c * c - (vo[0] * vo[0] + vo[1] * vo[1] + vo[2] * vo[2])
-    b = dx * vo[0] + dy * vo[1] + dz * vo[2]
-    delta = (b + np.sqrt(b * b + a * (dx * dx + dy * dy + dz * dz))) / a
-    rx = dx + vo[0] * delta
-    ry = dy + vo[1] * delta
-    rz = dz + vo[2] * delta
-    ro = radius * omega
-    mach = ((vel[0] + ro * (r_gh[0, 0] * dcp + r_gh[0, 1] * dsp)) * rx
-            + (vel[1] + ro * (r_gh[1, 0] * dcp + r_gh[1, 1] * dsp)) * ry
-            + (vel[2] + ro * (r_gh[2, 0] * dcp + r_gh[2, 1] * dsp)) * rz) / (c * c * delta)
-    ox = x0[0] + vo[0] * (tau + delta) - hx
-    oy = x0[1] + vo[1] * (tau + delta) - hy
-    oz = x0[2] + vo[2] * (tau + delta) - hz
-    return mach, np.sqrt(ox * ox + oy * oy + oz * oz)
-
-
-@njit(cache=True, parallel=True)
-def _radiation_mach_kernel(hub0, vel, r_gh, radius, omega, sign, n_blades, c, obs_x, obs_v, t0, n_samples):
-    n_obs = obs_x.shape[0]
-    mach = np.empty(n_obs)
-    dist = np.empty(n_obs)
-    period = 2.0 * np.pi / omega
-    for o in prange(n_obs):
-        x0 = obs_x[o]
-        vo = obs_v[o]
-        # the revolution searched starts at the hub's emission time for reception at t0
-        d_hub = x0 + vo * t0 - hub0 - vel * t0
-        tau0 = t0 - _delay(d_hub, vel, c)
-        best = -np.inf
-        best_dist = 0.0
-        vals = np.empty(n_samples)
-        # an observer moving with the hub sees every blade alike (shifted by 1/B revolution)
-        same = vo[0] == vel[0] and vo[1] == vel[1] and vo[2] == vel[2]
-        for k in range(1 if same else n_blades):
-            for i in range(n_samples):
-                tau = tau0 + period * i / n_samples
-                vals[i] = _tip_sample(hub0, vel, r_gh, radius, omega, sign, c, x0, vo, tau,
-                                      omega * tau + 2.0 * np.pi * k / n_blades)[0]
-            for i in range(n_samples):
-                f0 = vals[i - 1] if i > 0 else vals[n_samples - 1]
-                f1 = vals[i]
-                f2 = vals[i + 1] if i < n_samples - 1 else vals[0]
-                if f1 >= f0 and f1 >= f2:
-                    curv = 2.0 * f1 - f0 - f2
-                    peak = f1 + (f2 - f0) ** 2 / (8.0 * curv) if curv > 0.0 else f1
-                    if peak > best:
-                        best = peak
-                        tau = tau0 + period * i / n_samples
-                        best_dist = _tip_sample(hub0, vel, r_gh, radius, omega, sign, c, x0, vo, tau,
-                                                omega * tau + 2.0 * np.pi * k / n_blades)[1]
-        mach[o] = best
-        dist[o] = best_dist
-    return mach, dist
-
-
 def radiation_mach(
     rotor: HsiRotor,
     observer_position_m: np.ndarray,
@@ -221,7 +140,9 @@ def radiation_mach(
     for what, speeds in (("observer", np.linalg.norm(vel, axis=1)), ("hub", np.linalg.norm(m.velocity_mps)[None])):
         if np.any(speeds >= c):
             raise ValueError(f"{what} speed {speeds.max():.1f} m/s is not subsonic (c = {c:.1f} m/s)")
-    return _radiation_mach_kernel(
+    from nps.hsi_kernels import radiation_mach_kernel
+
+    return radiation_mach_kernel(
         m.hub_position_m.astype(float), m.velocity_mps.astype(float), np.ascontiguousarray(m.r_gh, dtype=float),
         rotor.radius_m, m.omega_rad_s, float(m.rotation_sign), m.n_blades, c, pos, vel, float(time_start_s),
         int(n_samples),
@@ -241,255 +162,6 @@ def shear_delay_s(p_pa, mach_r, distance_m, rotor: HsiRotor) -> np.ndarray:
 
 
 # --------------------------------------------------------------------------- shock fitting
-@njit(cache=True)
-def _fold_orientation(t, p, period):
-    """+1 if every backward step raises p (compressive folds), −1 if every one lowers it,
-    0 when the curve is strictly increasing in time, 2 when inconsistent."""
-    n = t.size
-    pos = 0
-    neg = 0
-    bad = 0
-    last = n if period > 0.0 else n - 1
-    for i in range(last):
-        j = i + 1
-        tj = t[j] if j < n else t[0] + period
-        pj = p[j] if j < n else p[0]
-        dt = tj - t[i]
-        dp = pj - p[i]
-        if dt <= 0.0:
-            if dp > 0.0:
-                pos += 1
-            elif dp < 0.0:
-                neg += 1
-            else:
-                bad += 1
-    if pos == 0 and neg == 0 and bad == 0:
-        return 0
-    if bad > 0 or (pos > 0 and neg > 0):
-        return 2
-    return 1 if pos > 0 else -1
-
-
-@njit(cache=True)
-def _envelope(t, p, wa, wb, sigma, p_ref):
-    """Upper envelope over [wa, wb] of Ψ(s) = σ ∫ (p − p_ref) dt along the polyline (t, p).
-
-    Along segment j (t_j → t_j+1, linear p) Ψ is quadratic in t. The envelope's slope σ(p − p_ref)
-    is the weak solution (Hopf–Lax), so the pressure of the top segment at each time is the fitted
-    signal. Breakpoints: vertex times and the roots of Ψ_i − Ψ_j of the segments active between
-    them. Returns (time, p, shock_time, p_before, p_after, status); status 1: the curve leaves a
-    gap in [wa, wb]; 2: the envelope jumps (fold of the wrong orientation).
-    """
-    n = t.size
-    nseg = n - 1
-    psi = np.zeros(n)
-    for i in range(nseg):
-        psi[i + 1] = psi[i] + sigma * (0.5 * (p[i] + p[i + 1]) - p_ref) * (t[i + 1] - t[i])
-    g = np.zeros(nseg)
-    lo = np.empty(nseg)
-    hi = np.empty(nseg)
-    valid = np.zeros(nseg, dtype=np.bool_)
-    for j in range(nseg):
-        dt = t[j + 1] - t[j]
-        lo[j] = min(t[j], t[j + 1])
-        hi[j] = max(t[j], t[j + 1])
-        if dt != 0.0 and hi[j] > wa and lo[j] < wb:
-            valid[j] = True
-            g[j] = (p[j + 1] - p[j]) / dt
-    segs = np.nonzero(valid)[0]
-    order = segs[np.argsort(lo[segs], kind="mergesort")]
-    inside = (t > wa) & (t < wb)
-    ev = np.empty(inside.sum() + 2)
-    ev[0] = wa
-    ev[1:-1] = np.sort(t[inside])
-    ev[-1] = wb
-    pscale = np.max(np.abs(p - p_ref)) + 1e-300
-    ptol = _JUMP_RTOL * pscale
-    psitol = 1e-9 * pscale * (wb - wa)
-
-    out_t = [wa]
-    out_p = [0.0]
-    sh_t = [0.0]
-    sh_m = [0.0]
-    sh_p = [0.0]
-    n_out = 0
-    n_sh = 0
-    active = np.empty(order.size, dtype=np.int64)
-    na = 0
-    ptr = 0
-    prev = -1
-    status = 0
-    roots = np.empty(8)
-    for ie in range(ev.size - 1):
-        a = ev[ie]
-        b = ev[ie + 1]
-        if b <= a:
-            continue
-        while ptr < order.size and lo[order[ptr]] <= a:
-            active[na] = order[ptr]
-            na += 1
-            ptr += 1
-        keep = 0
-        for q in range(na):
-            if hi[active[q]] > a:
-                active[keep] = active[q]
-                keep += 1
-        na = keep
-        if na == 0:
-            status = 1
-            break
-        # breakpoints inside (a, b): roots of the pairwise differences of Ψ
-        nb = 0
-        if na > 1:
-            if roots.size < na * na + 2:
-                roots = np.empty(2 * na * na + 2)
-            for q in range(na):
-                i = active[q]
-                ui = a - t[i]
-                vi = psi[i] + sigma * ((p[i] - p_ref) * ui + 0.5 * g[i] * ui * ui)
-                si = sigma * (p[i] + g[i] * ui - p_ref)
-                for r in range(q + 1, na):
-                    j = active[r]
-                    uj = a - t[j]
-                    vj = psi[j] + sigma * ((p[j] - p_ref) * uj + 0.5 * g[j] * uj * uj)
-                    sj = sigma * (p[j] + g[j] * uj - p_ref)
-                    c0 = vi - vj
-                    c1 = si - sj
-                    c2 = 0.5 * sigma * (g[i] - g[j])
-                    if c2 == 0.0:
-                        if c1 != 0.0:
-                            x = -c0 / c1
-                            if 0.0 < x < b - a:
-                                roots[nb] = a + x
-                                nb += 1
-                        continue
-                    disc = c1 * c1 - 4.0 * c2 * c0
-                    if disc < 0.0:
-                        continue
-                    qq = -0.5 * (c1 + np.copysign(np.sqrt(disc), c1))
-                    for x in (qq / c2, c0 / qq if qq != 0.0 else -1.0):
-                        if 0.0 < x < b - a:
-                            roots[nb] = a + x
-                            nb += 1
-        cuts = np.empty(nb + 2)
-        cuts[0] = a
-        cuts[1 : nb + 1] = np.sort(roots[:nb])
-        cuts[nb + 1] = b
-        for ic in range(nb + 1):
-            x0 = cuts[ic]
-            x1 = cuts[ic + 1]
-            if x1 <= x0:
-                continue
-            xm = 0.5 * (x0 + x1)
-            top = active[0]
-            best = -np.inf
-            for q in range(na):
-                j = active[q]
-                u = xm - t[j]
-                v = psi[j] + sigma * ((p[j] - p_ref) * u + 0.5 * g[j] * u * u)
-                if v > best:
-                    best = v
-                    top = j
-            if prev >= 0 and top != prev:
-                u0 = x0 - t[prev]
-                u1 = x0 - t[top]
-                v0 = psi[prev] + sigma * ((p[prev] - p_ref) * u0 + 0.5 * g[prev] * u0 * u0)
-                v1 = psi[top] + sigma * ((p[top] - p_ref) * u1 + 0.5 * g[top] * u1 * u1)
-                if abs(v1 - v0) > psitol:
-                    status = 2
-            prev = top
-            for x in (x0, x1):
-                pv = p[top] + g[top] * (x - t[top])
-                if n_out == 0:
-                    out_p[0] = pv
-                    n_out = 1
-                elif x > out_t[n_out - 1]:
-                    out_t.append(x)
-                    out_p.append(pv)
-                    n_out += 1
-                elif abs(pv - out_p[n_out - 1]) > ptol:
-                    if n_sh == 0:
-                        sh_t[0] = out_t[n_out - 1]
-                        sh_m[0] = out_p[n_out - 1]
-                        sh_p[0] = pv
-                    else:
-                        sh_t.append(out_t[n_out - 1])
-                        sh_m.append(out_p[n_out - 1])
-                        sh_p.append(pv)
-                    n_sh += 1
-                    out_t.append(np.nextafter(out_t[n_out - 1], np.inf))
-                    out_p.append(pv)
-                    n_out += 1
-    return (np.array(out_t), np.array(out_p), np.array(sh_t)[:n_sh], np.array(sh_m)[:n_sh],
-            np.array(sh_p)[:n_sh], status)
-
-
-@njit(cache=True)
-def _fit_periodic(t, p, period, wa):
-    """Envelope of the periodic curve (t, p) (closing segment to t[0] + period) over
-    [wa, wa + period]; the curve is unrolled over three periods so folds may wrap around."""
-    n = t.size
-    sigma = _fold_orientation(t, p, period)
-    if sigma == 2:
-        return np.empty(0), np.empty(0), np.empty(0), np.empty(0), np.empty(0), 3
-    if sigma == 0:
-        sigma = 1
-    area = 0.0
-    for i in range(n):
-        tj = t[i + 1] if i + 1 < n else t[0] + period
-        pj = p[i + 1] if i + 1 < n else p[0]
-        area += 0.5 * (p[i] + pj) * (tj - t[i])
-    tt = np.empty(3 * n + 1)
-    pp = np.empty(3 * n + 1)
-    for m in range(3):
-        tt[m * n : (m + 1) * n] = t + (m - 1) * period
-        pp[m * n : (m + 1) * n] = p
-    tt[3 * n] = t[0] + 2.0 * period
-    pp[3 * n] = p[0]
-    p_ref = area / period
-    ot, op, st, sm, sp, status = _envelope(tt, pp, wa, wa + period, float(sigma), p_ref)
-    if status == 0 and ot[-1] == wa + period and abs(op[-1] - op[0]) > _JUMP_RTOL * np.max(np.abs(p - p_ref)):
-        # a shock on the window edge: keep it as the pair (wb⁻, p_before), (wa + period, p_after)
-        ot[-1] = np.nextafter(wa + period, -np.inf)
-        st = np.concatenate((np.array([wa]), st))
-        sm = np.concatenate((np.array([op[-1]]), sm))
-        sp = np.concatenate((np.array([op[0]]), sp))
-    return ot, op, st, sm, sp, status
-
-
-@njit(cache=True)
-def _sample(xp, fp, x):
-    """Linear interpolation of the increasing polyline (xp, fp) at increasing x."""
-    out = np.empty(x.size)
-    j = 0
-    for i in range(x.size):
-        while j < xp.size - 2 and xp[j + 1] < x[i]:
-            j += 1
-        w = (x[i] - xp[j]) / (xp[j + 1] - xp[j])
-        w = min(max(w, 0.0), 1.0)
-        out[i] = fp[j] + w * (fp[j + 1] - fp[j])
-    return out
-
-
-@njit(cache=True, parallel=True)
-def _shear_fit_resample(time_s, p_amp, delay_s, period):
-    """Sheared, fitted and resampled signals for all observers (rows), on the grid ``time_s``."""
-    n_obs = p_amp.shape[0]
-    out = np.empty_like(p_amp)
-    n_shocks = np.zeros(n_obs, dtype=np.int64)
-    status = np.zeros(n_obs, dtype=np.int64)
-    for o in prange(n_obs):
-        ts = time_s - delay_s[o]
-        ft, fp, st, _, _, stat = _fit_periodic(ts, p_amp[o], period, time_s[0])
-        status[o] = stat
-        if stat == 0:
-            out[o] = _sample(ft, fp, time_s)
-            n_shocks[o] = st.size
-        else:
-            out[o] = np.nan
-    return out, n_shocks, status
-
-
 _STATUS_TEXT = {
     1: "the curve does not cover the whole period (time steps must advance by less than a period overall)",
     2: "the fold orientation is inconsistent (the equal-area envelope is discontinuous)",
@@ -529,6 +201,8 @@ def fit_shocks(time_s, p_pa, period_s: float | None = None) -> ShockFit:
     is already strictly increasing in time is returned unchanged. Aperiodic inputs must start
     and end on their earliest and latest times.
     """
+    from nps.hsi_kernels import envelope, fit_periodic, fold_orientation
+
     t = np.ascontiguousarray(time_s, dtype=float)
     p = np.ascontiguousarray(p_pa, dtype=float)
     if t.ndim != 1 or t.shape != p.shape or t.size < 3:
@@ -542,10 +216,10 @@ def fit_shocks(time_s, p_pa, period_s: float | None = None) -> ShockFit:
             return ShockFit(t.copy(), p.copy(), empty, empty, empty)
         if t.min() < t[0] or t.max() > t[-1]:
             raise ValueError("aperiodic signal folds past its first or last sample; pass period_s for a periodic one")
-        sigma = _fold_orientation(t, p, 0.0)
+        sigma = fold_orientation(t, p, 0.0)
         status = 3
         if sigma != 2:
-            result = _envelope(t, p, t[0], t[-1], float(sigma), float(p.mean()))
+            result = envelope(t, p, t[0], t[-1], float(sigma), float(p.mean()))
             status = result[-1]
     else:
         period = float(period_s)
@@ -553,7 +227,7 @@ def fit_shocks(time_s, p_pa, period_s: float | None = None) -> ShockFit:
             raise ValueError(f"period_s must be > 0, got {period_s}")
         if (np.diff(t) > 0).all() and t[0] + period > t[-1]:
             return ShockFit(t.copy(), p.copy(), empty, empty, empty)
-        result = _fit_periodic(t, p, period, t[0])
+        result = fit_periodic(t, p, period, t[0])
         status = result[-1]
         if status == 0:
             keep = result[0] < t[0] + period
@@ -608,7 +282,9 @@ def process_signals(time_s, p_pa, mach_r, distance_m, rotor: HsiRotor) -> tuple[
     period = _grid_period(t)
     p_amp = np.ascontiguousarray(np.atleast_2d(p_pa) * amplification(mach_r)[:, None], dtype=float)
     delay = np.ascontiguousarray(shear_delay_s(p_amp, np.asarray(mach_r)[:, None], np.asarray(distance_m)[:, None], rotor))
-    out, n_shocks, status = _shear_fit_resample(t, p_amp, delay, period)
+    from nps.hsi_kernels import shear_fit_resample
+
+    out, n_shocks, status = shear_fit_resample(t, p_amp, delay, period)
     if status.any():
         o = int(np.argmax(status != 0))
         raise ValueError(f"rotor {rotor.name}: shock fit failed for signal row {o}: {_STATUS_TEXT[int(status[o])]}")
@@ -650,6 +326,34 @@ def process(
     """
     rotor = HsiRotor.from_trim_row(trim_row)
     ids, time_s, p = _signal_matrix(signals)
+    pos, vel = _comoving_observers(observers, ids, rotor)
+    if intermediate_observer is not None and intermediate_observer not in set(ids.tolist()):
+        raise ValueError(f"intermediate observer {intermediate_observer} is not in the pressure signals")
+    mach_r, distance = radiation_mach(rotor, pos, vel, float(time_s[0]))
+    if np.any(mach_r >= 1.0):
+        bad = int(ids[np.argmax(mach_r)])
+        raise ValueError(f"rotor {rotor.name}: observer {bad} sees M_r = {mach_r.max():.3f} >= 1; HSI model needs M_r < 1")
+    p_hsi, n_shocks = process_signals(time_s, p, mach_r, distance, rotor)
+    diagnostics = pd.DataFrame(
+        {
+            "observer": ids,
+            "mach_r": mach_r,
+            "radiation_distance_m": distance,
+            "amplification": amplification(mach_r),
+            "shear_angle_rad": shear_angle_rad(mach_r),
+            "n_shocks": n_shocks.astype(np.int32),
+        }
+    )
+    inter = None
+    if intermediate_observer is not None:
+        o = int(np.nonzero(ids == intermediate_observer)[0][0])
+        inter = _intermediate(int(intermediate_observer), time_s, p[o], p_hsi[o], mach_r[o], distance[o], rotor)
+    return HsiResult(_signal_table(ids, time_s, p_hsi, "hsi"), diagnostics, inter)
+
+
+def _comoving_observers(observers: pd.DataFrame, ids: np.ndarray, rotor: HsiRotor) -> tuple[np.ndarray, np.ndarray]:
+    """(positions (n, 3) m, velocities (n, 3) m/s) in G of the observers ``ids`` (in that order);
+    errors for missing columns or rows and for observers not moving with the aircraft."""
     missing = [c for c in OBSERVER_COLUMNS if c not in observers.columns]
     if missing:
         raise ValueError(f"observers: missing column(s) {missing}; expected {list(OBSERVER_COLUMNS)}")
@@ -667,52 +371,36 @@ def process(
             f"observers: observer {bad} velocity {vel[np.argmax(off)]} m/s differs from the aircraft velocity "
             f"{rotor.motion.velocity_mps} m/s; the HSI stage needs observers moving with the aircraft (periodic signals)"
         )
-    if intermediate_observer is not None and intermediate_observer not in set(ids.tolist()):
-        raise ValueError(f"intermediate observer {intermediate_observer} is not in the pressure signals")
-    mach_r, distance = radiation_mach(rotor, pos, vel, float(time_s[0]))
-    if np.any(mach_r >= 1.0):
-        bad = int(ids[np.argmax(mach_r)])
-        raise ValueError(f"rotor {rotor.name}: observer {bad} sees M_r = {mach_r.max():.3f} >= 1; HSI model needs M_r < 1")
-    p_hsi, n_shocks = process_signals(time_s, p, mach_r, distance, rotor)
+    return pos, vel
+
+
+def _intermediate(observer: int, time_s, p_pa, p_hsi_pa, mach_r: float, distance_m: float,
+                  rotor: HsiRotor) -> HsiIntermediate:
+    """The steps of one observer's processing (signal p_pa (N,) Pa on the grid time_s (N,) s)."""
+    amp = float(amplification(mach_r))
+    p_amp = p_pa * amp
+    t_sheared = time_s - shear_delay_s(p_amp, mach_r, distance_m, rotor)
+    return HsiIntermediate(
+        observer=observer,
+        mach_r=float(mach_r),
+        distance_m=float(distance_m),
+        amplification=amp,
+        shear_angle_rad=float(shear_angle_rad(mach_r)),
+        time_s=time_s,
+        p_original_pa=p_pa,
+        p_amplified_pa=p_amp,
+        time_sheared_s=t_sheared,
+        fitted=fit_shocks(t_sheared, p_amp, _grid_period(time_s)),
+        p_final_pa=p_hsi_pa,
+    )
+
+
+def _signal_table(ids: np.ndarray, time_s: np.ndarray, p_pa: np.ndarray, group: str) -> pd.DataFrame:
+    """Signal table (observer, group, time_s, p_Pa) of p_pa (n_obs, N) Pa for observers ``ids``."""
     n = time_s.size
-    table = pd.DataFrame(
-        {
-            "observer": np.repeat(ids, n).astype(np.int32),
-            "group": "hsi",
-            "time_s": np.tile(time_s, ids.size),
-            "p_Pa": p_hsi.ravel(),
-        }
+    return pd.DataFrame(
+        {"observer": np.repeat(ids, n).astype(np.int32), "group": group, "time_s": np.tile(time_s, ids.size), "p_Pa": p_pa.ravel()}
     )
-    diagnostics = pd.DataFrame(
-        {
-            "observer": ids,
-            "mach_r": mach_r,
-            "radiation_distance_m": distance,
-            "amplification": amplification(mach_r),
-            "shear_angle_rad": shear_angle_rad(mach_r),
-            "n_shocks": n_shocks.astype(np.int32),
-        }
-    )
-    inter = None
-    if intermediate_observer is not None:
-        o = int(np.nonzero(ids == intermediate_observer)[0][0])
-        amp = float(amplification(mach_r[o]))
-        p_amp = p[o] * amp
-        t_sheared = time_s - shear_delay_s(p_amp, mach_r[o], distance[o], rotor)
-        inter = HsiIntermediate(
-            observer=int(intermediate_observer),
-            mach_r=float(mach_r[o]),
-            distance_m=float(distance[o]),
-            amplification=amp,
-            shear_angle_rad=float(shear_angle_rad(mach_r[o])),
-            time_s=time_s,
-            p_original_pa=p[o],
-            p_amplified_pa=p_amp,
-            time_sheared_s=t_sheared,
-            fitted=fit_shocks(t_sheared, p_amp, _grid_period(time_s)),
-            p_final_pa=p_hsi[o],
-        )
-    return HsiResult(table, diagnostics, inter)
 
 
 def combine_rotors(tables: Sequence[pd.DataFrame], group: str = "hsi") -> pd.DataFrame:
@@ -733,7 +421,4 @@ def combine_rotors(tables: Sequence[pd.DataFrame], group: str = "hsi") -> pd.Dat
             raise ValueError(f"combine_rotors: table {k} has other observers or another time grid than table 0")
         else:
             total = total + p
-    n = time0.size
-    return pd.DataFrame(
-        {"observer": np.repeat(ids0, n).astype(np.int32), "group": group, "time_s": np.tile(time0, ids0.size), "p_Pa": total.ravel()}
-    )
+    return _signal_table(ids0, time0, total, group)

@@ -33,9 +33,8 @@ import numpy as np
 import pandas as pd
 
 from nps import broadband
-from nps.atmosphere import AtmosphereState, absorb_band_levels, absorb_periodic_signal
+from nps.atmosphere import AtmosphereState, absorb_band_levels, apply_line_gain, periodic_absorption_gain
 from nps.signals import signal_arrays
-from nps.rotor import RotorGeometry
 from nps.spectra import (
     LEVEL_FLOOR_DB,
     band_msp,
@@ -171,35 +170,34 @@ class ToneCorrection:
         return float(self.correction.max())
 
 
-def tone_correction(band_levels_db) -> ToneCorrection:
-    """14 CFR 36 A36.4.3 steps 1-9 for one spectrum of the 24 bands 50 Hz–10 kHz."""
-    spl = _check_pnl_bands(band_levels_db)
-    if spl.ndim != 1:
-        raise ValueError(f"tone_correction takes one spectrum (24 values), got shape {spl.shape}")
+def _tone_correction_rows(spl: np.ndarray) -> ToneCorrection:
+    """A36.4.3 steps 1-9 for spectra ``spl`` (n, 24) at once; every field has a leading n axis
+    (S' (n, 23), S̄ (n, 21), the others (n, 24))."""
+    n = spl.shape[0]
     i3 = 2  # 0-based index of band 3 (80 Hz)
-    s = np.full(24, np.nan)
-    s[i3 + 1 :] = np.diff(spl[i3:])  # step 1: S(i) = SPL(i) - SPL(i-1), i = 4..24
-    circled_s = np.zeros(24, dtype=bool)  # step 2: |S(i) - S(i-1)| > 5
-    circled_s[i3 + 2 :] = np.abs(np.diff(s[i3 + 1 :])) > 5.0
-    circled_spl = np.zeros(24, dtype=bool)  # step 3
-    for i in np.flatnonzero(circled_s):
-        if s[i] > 0.0 and s[i] > s[i - 1]:
-            circled_spl[i] = True
-        elif s[i] <= 0.0 and s[i - 1] > 0.0:
-            circled_spl[i - 1] = True
+    s = np.full((n, 24), np.nan)
+    s[:, i3 + 1 :] = np.diff(spl[:, i3:], axis=1)  # step 1: S(i) = SPL(i) - SPL(i-1), i = 4..24
+    circled_s = np.zeros((n, 24), dtype=bool)  # step 2: |S(i) - S(i-1)| > 5
+    circled_s[:, i3 + 2 :] = np.abs(np.diff(s[:, i3 + 1 :], axis=1)) > 5.0
+    # step 3: circle SPL(i) where S(i) is positive and rising, SPL(i-1) where S turns non-positive
+    s_prev = np.roll(s, 1, axis=1)
+    circled_spl = circled_s & (s > 0.0) & (s > s_prev)
+    circled_spl[:, :-1] |= (circled_s & (s <= 0.0) & (s_prev > 0.0))[:, 1:]
     adjusted = spl.copy()  # step 4
-    for i in np.flatnonzero(circled_spl):
-        adjusted[i] = 0.5 * (spl[i - 1] + spl[i + 1]) if i < 23 else spl[22] + s[22]
-    sp = np.empty(23)  # step 5: S'(3..25)
-    sp[1:22] = np.diff(adjusted[i3:])
-    sp[0] = sp[1]
-    sp[22] = sp[21]
-    sbar = (sp[0:21] + sp[1:22] + sp[2:23]) / 3.0  # step 6: S̄(3..23)
-    final = np.full(24, np.nan)  # step 7
-    final[i3] = spl[i3]
-    final[i3 + 1 :] = spl[i3] + np.cumsum(sbar)
-    f = np.zeros(24)  # step 8
-    f[i3:] = spl[i3:] - final[i3:]
+    neighbours = np.full((n, 24), np.nan)
+    neighbours[:, 1:23] = 0.5 * (spl[:, :22] + spl[:, 2:])
+    neighbours[:, 23] = spl[:, 22] + s[:, 22]
+    adjusted[circled_spl] = neighbours[circled_spl]
+    sp = np.empty((n, 23))  # step 5: S'(3..25)
+    sp[:, 1:22] = np.diff(adjusted[:, i3:], axis=1)
+    sp[:, 0] = sp[:, 1]
+    sp[:, 22] = sp[:, 21]
+    sbar = (sp[:, 0:21] + sp[:, 1:22] + sp[:, 2:23]) / 3.0  # step 6: S̄(3..23)
+    final = np.full((n, 24), np.nan)  # step 7
+    final[:, i3] = spl[:, i3]
+    final[:, i3 + 1 :] = spl[:, i3 : i3 + 1] + np.cumsum(sbar, axis=1)
+    f = np.zeros((n, 24))  # step 8
+    f[:, i3:] = spl[:, i3:] - final[:, i3:]
     f[f < 1.5] = 0.0
     low_or_high = (PNL_NOMINAL_HZ < 500.0) | (PNL_NOMINAL_HZ > 5000.0)  # step 9, Table A36-2
     c = np.where(
@@ -210,11 +208,19 @@ def tone_correction(band_levels_db) -> ToneCorrection:
     return ToneCorrection(s, adjusted, sp, sbar, final, f, c)
 
 
+def tone_correction(band_levels_db) -> ToneCorrection:
+    """14 CFR 36 A36.4.3 steps 1-9 for one spectrum of the 24 bands 50 Hz–10 kHz."""
+    spl = _check_pnl_bands(band_levels_db)
+    if spl.ndim != 1:
+        raise ValueError(f"tone_correction takes one spectrum (24 values), got shape {spl.shape}")
+    rows = _tone_correction_rows(spl[None, :])
+    return ToneCorrection(*(getattr(rows, name)[0] for name in ToneCorrection.__dataclass_fields__))
+
+
 def pnlt(band_levels_db) -> np.ndarray:
     """Tone-corrected PNL (TPNdB) = PNL + C_max; band levels on the last axis (24 bands)."""
     spl = _check_pnl_bands(band_levels_db)
-    flat = spl.reshape(-1, 24)
-    c_max = np.array([tone_correction(row).c_max_db for row in flat]).reshape(spl.shape[:-1])
+    c_max = _tone_correction_rows(spl.reshape(-1, 24)).correction.max(axis=1).reshape(spl.shape[:-1])
     return pnl(spl) + c_max
 
 
@@ -321,10 +327,11 @@ def observer_set_metrics(
     if np.any(np.diff(bands) != 1) or bands[0] > PNL_BANDS[0] or bands[-1] < PNL_BANDS[-1]:
         raise ValueError("band_numbers must be consecutive and include the PNL bands -13..10 (50 Hz-10 kHz)")
     centres = third_octave_bands(bands)["center_hz"]
-    tonal = dict(signals_pa)
-    total_p = tonal["hsi"] if "hsi" in tonal else tonal["thickness"] + tonal["loading"]
-    source_spectra = {name: narrowband_msp(p, dt_s) for name, p in tonal.items()}
-    freq, total_msp = narrowband_msp(total_p, dt_s)
+    source_spectra = {name: narrowband_msp(p, dt_s) for name, p in signals_pa.items()}
+    if "hsi" in signals_pa:
+        freq, total_msp = source_spectra["hsi"]
+    else:
+        freq, total_msp = narrowband_msp(signals_pa["thickness"] + signals_pa["loading"], dt_s)
     # the 0 Hz line (the mean pressure) is not sound: excluded from every level
     oaspl = {name: level_db(msp[..., 1:].sum(axis=-1)) for name, (_, msp) in source_spectra.items()}
     bands_db = {name: level_db(band_msp(f, msp, bands)) for name, (f, msp) in source_spectra.items()}
@@ -350,6 +357,10 @@ def observer_set_metrics(
     )
 
 
+OBSERVER_COLUMNS = ("observer", "x_m", "y_m", "z_m", "elevation_deg", "azimuth_deg")
+"""Columns the metrics stage needs from the observers artifact."""
+
+
 def metrics_tables(
     signals: Mapping[str, pd.DataFrame],
     observers: pd.DataFrame,
@@ -373,32 +384,58 @@ def metrics_tables(
     Returns (metrics: one row per observer, bands: observer × source × band, the levels
     object with the narrowband tonal spectra, observers in ascending id order).
     """
-    for col in ("observer", "x_m", "y_m", "z_m", "elevation_deg", "azimuth_deg"):
+    obs = _sorted_observers(observers)
+    _check_rotor_sets(trim, signals, hsi_signals)
+    ids = obs["observer"].to_numpy()
+    positions = obs[["x_m", "y_m", "z_m"]].to_numpy(dtype=float)
+    rows = [row for _, row in trim.iterrows()]
+    geometry = [_hub_observer_geometry(row, positions) for row in rows]
+    summed, dt = _summed_tonal_signals(rows, geometry, signals, hsi_signals, ids, atmosphere)
+    broadband_db = _broadband_band_levels(rows, geometry, solidity, atmosphere, broadband_msp) if broadband_on else None
+    ref = trim.iloc[0]
+    bpf_hz = float(ref["n_blades"]) * float(ref["omega_rad_s"]) / (2.0 * np.pi)
+    result = observer_set_metrics(summed, dt, bpf_hz, broadband_db, harmonics, STUDY_BANDS)
+    return _metrics_table(obs, result), _bands_table(ids, result), result
+
+
+def _sorted_observers(observers: pd.DataFrame) -> pd.DataFrame:
+    """The observers artifact in ascending observer id; error naming a missing column."""
+    for col in OBSERVER_COLUMNS:
         if col not in observers.columns:
             raise ValueError(f"observers: missing column '{col}'")
+    return observers.sort_values("observer", kind="mergesort").reset_index(drop=True)
+
+
+def _check_rotor_sets(trim: pd.DataFrame, signals: Mapping, hsi_signals: Mapping | None) -> None:
     rotors = list(trim["rotor"])
     if set(signals) != set(rotors):
         raise ValueError(f"pressure signals are for rotors {sorted(signals)}, trim has {sorted(rotors)}")
     if hsi_signals is not None and set(hsi_signals) != set(rotors):
         raise ValueError(f"HSI signals are for rotors {sorted(hsi_signals)}, trim has {sorted(rotors)}")
-    obs = observers.sort_values("observer", kind="mergesort").reset_index(drop=True)
-    ids_ref = obs["observer"].to_numpy()
-    positions = obs[["x_m", "y_m", "z_m"]].to_numpy(dtype=float)
-    centres = third_octave_bands(STUDY_BANDS)["center_hz"]
+
+
+def _hub_observer_geometry(row: pd.Series, positions: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(distance (m), cos θ from the thrust axis) of each observer (n, 3) from one rotor's hub."""
+    hub = row[["hub_x_m", "hub_y_m", "hub_z_m"]].to_numpy(dtype=float)
+    axis = row[["r_gh_02", "r_gh_12", "r_gh_22"]].to_numpy(dtype=float)
+    return broadband.observer_geometry(hub, axis, positions)
+
+
+def _summed_tonal_signals(rows, geometry, signals, hsi_signals, ids: np.ndarray,
+                          atmosphere: AtmosphereState | None) -> tuple[dict[str, np.ndarray], float]:
+    """Source group → p (Pa) (n_observers, N) summed over the rotors (trim order), each rotor's
+    signals absorbed over its own hub-observer distances; and the sample interval (s)."""
     summed: dict[str, np.ndarray] = {}
-    bb_msp = np.zeros((ids_ref.size, STUDY_BANDS.size))
     time_ref = None
-    for _, row in trim.iterrows():
+    for row, (dist, _) in zip(rows, geometry):
         name = row["rotor"]
-        hub = row[["hub_x_m", "hub_y_m", "hub_z_m"]].to_numpy(dtype=float)
-        axis = row[["r_gh_02", "r_gh_12", "r_gh_22"]].to_numpy(dtype=float)
-        dist, cos_t = broadband.observer_geometry(hub, axis, positions)
         tables = [(signals[name], f"pressure signals of rotor '{name}'")]
         if hsi_signals is not None:
             tables.append((hsi_signals[name], f"HSI signals of rotor '{name}'"))
+        gains: dict[tuple[int, float], np.ndarray] = {}  # absorption per (N, dt) of this rotor
         for table, what in tables:
-            ids, time, groups = signal_arrays(table, what=what)
-            if ids.shape != ids_ref.shape or np.any(ids != ids_ref):
+            obs_ids, time, groups = signal_arrays(table, what=what)
+            if obs_ids.shape != ids.shape or np.any(obs_ids != ids):
                 raise ValueError(f"{what}: observers differ from the observers artifact")
             if time_ref is None:
                 time_ref = time
@@ -411,14 +448,29 @@ def metrics_tables(
                 if group not in TONAL_SOURCES:
                     raise ValueError(f"{what}: unknown group '{group}'")
                 if atmosphere is not None:
-                    p = absorb_periodic_signal(p, dt, dist, atmosphere)
+                    key = (p.shape[-1], dt)
+                    if key not in gains:
+                        gains[key] = periodic_absorption_gain(p.shape[-1], dt, dist, atmosphere)
+                    p = apply_line_gain(p, gains[key])
                 summed[group] = summed.get(group, 0.0) + p
-        if broadband_on and broadband_msp is not None:
-            given = np.asarray(broadband_msp[name], dtype=float)
+    return summed, float(time_ref[1] - time_ref[0])
+
+
+def _broadband_band_levels(rows, geometry, solidity: Mapping[str, float], atmosphere: AtmosphereState | None,
+                           given_msp: Mapping[str, np.ndarray] | None) -> np.ndarray:
+    """Broadband 1/3-octave levels (dB) (n_observers, STUDY_BANDS), energy-summed over the rotors
+    (trim order), each absorbed at the mid-band frequencies over its hub distance: a rotor's
+    ``given_msp`` (Pa², e.g. BPM) when given, else Pegg's model."""
+    centres = third_octave_bands(STUDY_BANDS)["center_hz"]
+    bb_msp = np.zeros((geometry[0][0].size, STUDY_BANDS.size))
+    for row, (dist, cos_t) in zip(rows, geometry):
+        name = row["rotor"]
+        if given_msp is not None:
+            given = np.asarray(given_msp[name], dtype=float)
             if given.shape != bb_msp.shape:
                 raise ValueError(f"broadband_msp of rotor '{name}': expected shape {bb_msp.shape}, got {given.shape}")
             levels = level_db(given)
-        elif broadband_on:
+        else:
             sigma = float(solidity[name])
             radius = float(row["radius_m"])
             rotor = broadband.PeggRotor(
@@ -428,18 +480,16 @@ def metrics_tables(
                 mean_lift_coefficient=broadband.mean_lift_coefficient(float(row["ct"]), sigma),
             )
             levels = broadband.band_levels_db(rotor, STUDY_BANDS, dist, cos_t, float(row["speed_of_sound_mps"]))
-        if broadband_on:
-            if atmosphere is not None:
-                levels = absorb_band_levels(levels, centres, dist[:, None], atmosphere)
-            bb_msp += msp_from_level(levels)
-    ref = trim.iloc[0]
-    bpf_hz = float(ref["n_blades"]) * float(ref["omega_rad_s"]) / (2.0 * np.pi)
-    dt = float(time_ref[1] - time_ref[0])
-    result = observer_set_metrics(
-        summed, dt, bpf_hz, level_db(bb_msp) if broadband_on else None, harmonics, STUDY_BANDS
-    )
+        if atmosphere is not None:
+            levels = absorb_band_levels(levels, centres, dist[:, None], atmosphere)
+        bb_msp += msp_from_level(levels)
+    return level_db(bb_msp)
+
+
+def _metrics_table(obs: pd.DataFrame, result: ObserverSetLevels) -> pd.DataFrame:
+    """One row per observer: direction, total levels and OASPL per source present."""
     metrics = pd.DataFrame({
-        "observer": ids_ref.astype(np.int32),
+        "observer": obs["observer"].to_numpy().astype(np.int32),
         "elevation_deg": obs["elevation_deg"].to_numpy(dtype=float),
         "azimuth_deg": obs["azimuth_deg"].to_numpy(dtype=float),
         "oaspl_db": result.oaspl_db["total"],
@@ -451,20 +501,29 @@ def metrics_tables(
     for source in ("thickness", "loading", "hsi", "broadband"):
         if source in result.oaspl_db:
             metrics[f"oaspl_{source}_db"] = result.oaspl_db[source]
-    n_obs, n_bands = ids_ref.size, STUDY_BANDS.size
+    return metrics
+
+
+def _bands_table(ids: np.ndarray, result: ObserverSetLevels) -> pd.DataFrame:
+    """Long table observer × source × band of the 1/3-octave levels (dB)."""
+    n_obs, n_bands = ids.size, result.band_numbers.size
+    centres = third_octave_bands(result.band_numbers)["center_hz"]
     frames = [
         pd.DataFrame({
-            "observer": np.repeat(ids_ref.astype(np.int32), n_bands),
+            "observer": np.repeat(ids.astype(np.int32), n_bands),
             "source": source,
-            "band": np.tile(STUDY_BANDS.astype(np.int32), n_obs),
+            "band": np.tile(result.band_numbers.astype(np.int32), n_obs),
             "center_hz": np.tile(centres, n_obs),
             "level_db": levels.reshape(-1),
         })
         for source, levels in result.bands_db.items()
     ]
-    return metrics, pd.concat(frames, ignore_index=True), result
+    return pd.concat(frames, ignore_index=True)
 
 
 def rotor_solidities(aircraft: Mapping) -> dict[str, float]:
     """Rotor name → solidity σ = B c/(π R) from a validated aircraft configuration."""
+    # imported here: nps.rotor loads numba (airfoil kernels), which metrics jobs do not need
+    from nps.rotor import RotorGeometry
+
     return {str(r["name"]): RotorGeometry.from_config(r).solidity for r in aircraft["rotors"]}

@@ -4,7 +4,7 @@ and time histories of several observers before and after HSI processing."""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Mapping
+from typing import TYPE_CHECKING, Mapping
 
 import matplotlib
 
@@ -14,7 +14,8 @@ import numpy as np  # noqa: E402
 
 from nps.plots import save_figure  # noqa: E402
 
-from nps.hsi import HsiIntermediate  # noqa: E402
+if TYPE_CHECKING:
+    from nps.hsi import HsiIntermediate
 
 STEP_TITLES = ("original", "amplified (eq. 6.1)", "sheared (eq. 6.3-6.6)", "shock-fitted (equal area)")
 
@@ -67,6 +68,3 @@ def plot_observer_histories(histories: Mapping[str, tuple[np.ndarray, np.ndarray
         fig.suptitle(title)
     fig.tight_layout()
     return save_figure(fig, path)
-
-
-

@@ -13,9 +13,9 @@ MODULES = sorted(
     ".".join(("nps",) + p.relative_to(PACKAGE_DIR).with_suffix("").parts).removesuffix(".__init__")
     for p in PACKAGE_DIR.rglob("*.py")
 )
-PHYSICS = ("acoustics", "atmosphere", "bet", "broadband", "bvi", "frames", "hsi", "metrics", "observers", "rotor",
-           "sources", "signals", "spectra", "tones", "trim", "wake", "jit", "airfoils", "blade", "control", "propagation",
-           "trajectory", "certification", "footprint", "source_hemisphere")
+PHYSICS = ("acoustics", "atmosphere", "bet", "broadband", "bvi", "frames", "hsi", "hsi_kernels", "metrics", "observers",
+           "rotor", "sources", "signals", "spectra", "tones", "trim", "wake", "jit", "airfoils", "blade", "control",
+           "propagation", "trajectory", "certification", "footprint", "source_hemisphere")
 
 
 def _module_level_imports(module: str) -> set[str]:

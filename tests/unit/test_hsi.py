@@ -252,3 +252,16 @@ def test_cli_writes_hsi_table_diagnostics_intermediate_and_figure(tmp_path):
     assert read_table(tmp_path / "hsi/main_diagnostics.parquet")["n_shocks"].iloc[0] >= 1
     assert (tmp_path / "fig.png").stat().st_size > 0
     assert main(args + ["tail"]) == 2
+
+
+def test_hsi_and_its_figures_import_without_the_kernels():
+    """Summing or plotting HSI signals (hsi_figure job) does not load the compiled HSI kernels:
+    nps.hsi imports nps.hsi_kernels only when a kernel runs."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    code = "import sys, nps.hsi, nps.plots.hsi; print('nps.hsi_kernels' in sys.modules)"
+    repo = Path(__file__).resolve().parents[2]
+    out = subprocess.run([sys.executable, "-c", code], cwd=repo, capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "False"
