@@ -6,11 +6,18 @@ Every stage of the workflow is usable on its own: ``nps/cli/<stage>.py`` parses 
 
 from __future__ import annotations
 
-import importlib
-import pkgutil
-import sys
+import os
 
-import nps.cli
+# Deterministic results: a multi-threaded BLAS may sum the spectra's matrix products in another order
+# (last-bit differences); set before numpy loads. The workflow's jobs get the same from nps.stages.job.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+import importlib  # noqa: E402
+import pkgutil  # noqa: E402
+import sys  # noqa: E402
+
+import nps.cli  # noqa: E402
 
 
 def stages() -> list[str]:

@@ -33,6 +33,7 @@ def process_age_s() -> float:
 def run_job(snakemake, stage: str) -> None:
     """Run ``stage`` (a key of :data:`nps.stages.STAGES`) for a Snakemake script job."""
     os.environ["NUMBA_NUM_THREADS"] = str(max(1, int(snakemake.threads)))
+    os.environ["OPENBLAS_NUM_THREADS"] = "1"  # BLAS sums in one order: bit-reproducible spectra
     params = {key: value for key, value in snakemake.params.items() if key != "code"}
     wildcards = dict(snakemake.wildcards.items())
     clash = sorted(set(params) & set(wildcards))
