@@ -19,6 +19,8 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--rotor", nargs="+", help="rotor names (default: every rotor of the aircraft)")
     ap.add_argument("--wake-dir", required=True, help="output directory of the wake geometry")
     ap.add_argument("--bvi-dir", required=True, help="output directory of the BVI disk tables")
+    ap.add_argument("--model", choices=("beddoes", "free"), default=default("wake.model"),
+                    help="beddoes (prescribed, per rotor) or free (free-vortex wakes of all rotors, interaction)")
     ap.add_argument("--A", type=float, default=default("wake.A"), help="Beddoes skew coefficient A")
     ap.add_argument("--B", type=float, default=default("wake.B"), help="Beddoes lateral coefficient B")
     ap.add_argument("--C", type=float, default=default("wake.C"), help="Beddoes mean-inflow coefficient C")
@@ -37,7 +39,7 @@ def main(argv: list[str]) -> int:
         rotors = {name: aircraft_rotor(aircraft, name, args.aircraft) for name in names}
     except ConfigError as error:
         return fail(str(error))
-    wake = {"A": args.A, "B": args.B, "C": args.C, "D": args.D, "core_radius_chords": args.core_radius_chords,
+    wake = {"model": args.model, "A": args.A, "B": args.B, "C": args.C, "D": args.D, "core_radius_chords": args.core_radius_chords,
             "core_growth": args.core_growth}
     params = {"rotors": rotors, "wake": wake, "revolutions": args.revolutions, "steps_per_rev": args.steps_per_rev,
               "step_deg": args.step_deg, "unsteady": not args.quasi_steady, "aircraft": aircraft["name"],

@@ -1,15 +1,19 @@
 """Stage ``wake``: tip-vortex wake and BVI loads of every rotor of one aircraft in one segment.
 
-Per rotor: the Beddoes prescribed wake from its trimmed loads (nps.wake) with a legacy-VTK series
-for ParaView, and the BVI loads, i.e. the wake's induced velocity added to the trimmed loads
-without re-trim (nps.bvi).
+``wake.model: beddoes`` (default): per rotor, the Beddoes prescribed wake from its trimmed loads
+(nps.wake), and the BVI loads, i.e. the wake's induced velocity added to the trimmed loads without
+re-trim (nps.bvi). ``wake.model: free``: the free-vortex wakes of all rotors relaxed together
+(nps.freewake) and each rotor's loads with every rotor's wake, re-trimmed where the other rotors'
+wakes change its mean inflow (nps.interaction; options in the optional ``wake.free`` block), plus
+the per-aircraft interaction summary ``interaction.parquet`` in the wake directory. Either way a
+legacy-VTK series of each rotor's wake for ParaView.
 
 inputs: ``trim`` (trim.parquet), ``loads`` (directory of the loads stage). outputs: ``wake``
 (directory: ``{rotor}.parquet`` wake geometry, :data:`nps.wake.WAKE_COLUMNS`, one row per vortex
-node per snapshot over one blade passage, and ``{rotor}_vtk/``), ``bvi`` (directory:
+node per snapshot over one blade passage, ``{rotor}_vtk/``, with the free wake ``interaction.parquet``), ``bvi`` (directory:
 ``{rotor}.parquet``, BVI disk table with the loads' columns). params: ``rotors`` (rotor name →
-validated rotor configuration), ``wake`` (config ``wake`` section: A, B, C, D, core_radius_chords,
-core_growth), ``revolutions`` (wake age kept), ``steps_per_rev`` (vortex segments per revolution),
+validated rotor configuration), ``wake`` (config ``wake`` section: model, A, B, C, D,
+core_radius_chords, core_growth, optional free), ``revolutions`` (wake age kept), ``steps_per_rev`` (vortex segments per revolution),
 ``aircraft``, ``segment``; optional ``step_deg`` (snapshot spacing, default 5°), ``unsteady``
 (Sears response, default true).
 """
@@ -18,7 +22,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from nps import bvi, vtk, wake
+from nps import bvi, freewake, interaction, vtk, wake
 from nps.io import read_table, rotor_path, write_table
 from nps.rotor import RotorGeometry, RotorMotion
 from nps.trim import TRIM_COLUMNS, trim_row
@@ -43,26 +47,36 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     step_deg = float(params.get("step_deg", 5.0))
     trim = read_table(inputs["trim"], required=TRIM_COLUMNS)
     wake_dir, bvi_dir = Path(outputs["wake"]), Path(outputs["bvi"])
+    names = list(params["rotors"])
+    paths = {name: (rotor_path(inputs["loads"], name), rotor_path(inputs["loads"], name, "_summary")) for name in names}
+    disks = {name: read_table(paths[name][0], required=bvi.DISK_COLUMNS) for name in names}
+    summaries = {name: read_table(paths[name][1], required=SUMMARY_COLUMNS) for name in names}
+    free = params["wake"].get("model", "beddoes") == "free"
+    if free:
+        coupled = interaction.aircraft_bvi_loads(trim, params["rotors"], disks, summaries, model,
+                                                 freewake.FreeWakeModel.from_config(params["wake"].get("free")), bvi_model)
     report = []
     for name, rotor in params["rotors"].items():
-        loads_path = rotor_path(inputs["loads"], name)
-        summary_path = rotor_path(inputs["loads"], name, "_summary")
-        paths = [str(loads_path), str(summary_path), str(inputs["trim"])]
-        disk = read_table(loads_path, required=bvi.DISK_COLUMNS)
-        ct = bvi.summary_value(read_table(summary_path, required=SUMMARY_COLUMNS), "ct", str(summary_path))
+        disk, inputs_of = disks[name], [str(paths[name][0]), str(paths[name][1]), str(inputs["trim"])]
+        ct = bvi.summary_value(summaries[name], "ct", str(paths[name][1]))
         row = trim_row(trim, name, str(inputs["trim"]))
         meta = {"aircraft": params["aircraft"], "segment": params["segment"], "rotor": name, "wake_model": model.__dict__}
         # wake geometry snapshots over one blade passage (the wake is periodic in 2π/B)
         state = bvi.wake_state(disk, row, ct)
         motion = RotorMotion.from_trim_row(row)
         psi = wake.snapshot_azimuths(state.n_blades, step_deg)
-        table = wake.wake_table(state, model, psi, motion)
-        write_table(table, rotor_path(wake_dir, name), stage="wake", metadata={**meta, "step_deg": step_deg, "inputs": paths})
+        snapshot = (lambda p, n=name: freewake.wake_snapshot(coupled.solution, n, p)) if free else None
+        table = wake.wake_table(state, model, psi, motion, snapshot=snapshot)
+        write_table(table, rotor_path(wake_dir, name), stage="wake", metadata={**meta, "step_deg": step_deg, "inputs": inputs_of})
         _vtk_series(wake_dir / f"{name}_vtk", name, state, table, psi, motion, float(disk["r_m"].min() - 0.5 * disk["dr_m"].iloc[0]))
         # BVI loads: the wake's induced velocity on the blades
-        result = bvi.bvi_loads(disk, row, RotorGeometry.from_config(rotor), ct, model, bvi_model)
+        result = coupled.results[name] if free else bvi.bvi_loads(disk, row, RotorGeometry.from_config(rotor), ct, model, bvi_model)
         write_table(result.disk, rotor_path(bvi_dir, name), stage="bvi",
-                    metadata={**meta, "bvi_model": bvi_model.__dict__, "inputs": paths})
+                    metadata={**meta, "bvi_model": bvi_model.__dict__, "inputs": inputs_of})
         report.append(f"rotor {name}: {len(table)} wake nodes; peak |dU_P| = {abs(result.d_up_mps).max():.4g} m/s, "
                       f"peak |dU_T| = {abs(result.d_ut_mps).max():.4g} m/s")
+    if free:
+        write_table(coupled.summary, wake_dir / "interaction.parquet", stage="wake",
+                    metadata={"aircraft": params["aircraft"], "segment": params["segment"], "free_wake": params["wake"].get("free", {})})
+        report.append(coupled.summary.to_string(index=False))
     return "\n".join(report)

@@ -120,3 +120,20 @@ def test_rotor_figures_stage_draws_disk_wake_and_bvi(chain):
         {"rotors": {"main": {"rotation_sign": 1, "radius_m": 7.62}}, "aircraft": "helicopter", "segment": "seg3"})
     for kind in ("disk", "wake", "bvi"):
         assert (chain / "figures" / f"{kind}_main.png").stat().st_size > 10_000
+
+
+def test_free_wake_stage_couples_the_rotors_and_writes_the_interaction_summary(chain, repo_root):
+    """wake.model free: every rotor's wake relaxed together; the tail's BVI loads differ from its isolated
+    Beddoes result and the summary names, for each rotor, the wake that dominates its BVI increment."""
+    aircraft = str(repo_root / "config/aircraft/helicopter.yaml")
+    assert loads_cli.main(["--aircraft", aircraft, "--trim", str(chain / "trim.parquet"), "--n-psi", "72", "--n-r", "12",
+                           "--out-dir", str(chain / "loads_all")]) == 0
+    args = ["--aircraft", aircraft, "--trim", str(chain / "trim.parquet"), "--loads-dir", str(chain / "loads_all"),
+            "--step-deg", "30", "--steps-per-rev", "72", "--revolutions", "2"]
+    assert wake_cli.main(args + ["--wake-dir", str(chain / "wb"), "--bvi-dir", str(chain / "bb")]) == 0
+    assert wake_cli.main(args + ["--model", "free", "--wake-dir", str(chain / "wf"), "--bvi-dir", str(chain / "bf")]) == 0
+    summary = read_table(chain / "wf/interaction.parquet")
+    assert set(summary["rotor"]) == {"main", "tail"}
+    tail_free, tail_alone = read_table(chain / "bf/tail.parquet"), read_table(chain / "bb/tail.parquet")
+    assert np.isfinite(tail_free["fz_N_per_m"]).all()
+    assert not np.allclose(tail_free["fz_N_per_m"], tail_alone["fz_N_per_m"])
