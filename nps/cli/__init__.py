@@ -15,11 +15,15 @@ import sys
 from nps.config import schema_default
 
 
-def parser(stage: str, description: str) -> argparse.ArgumentParser:
-    """Argument parser of ``python -m nps <stage>`` with the common ``--debug`` option."""
+def parser(stage: str, description: str, validity: bool = False) -> argparse.ArgumentParser:
+    """Argument parser of ``python -m nps <stage>`` with the common ``--debug`` option (and, for a stage
+    with validity checks, ``--allow-outside-validity``, the campaign switch of docs/models/validity.md)."""
     ap = argparse.ArgumentParser(prog=f"python -m nps {stage}", description=description,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--debug", action="store_true", help="show the traceback of an error")
+    if validity:
+        ap.add_argument("--allow-outside-validity", action="store_true",
+                        help="run outside the models' validity envelope with a warning in the output's metadata")
     return ap
 
 
@@ -28,13 +32,19 @@ def default(field: str):
     return schema_default("config", field)
 
 
-def run_stage(stage: str, inputs: dict, outputs: dict, params: dict, debug: bool = False) -> int:
-    """Run ``nps.stages.<stage>.run``; print its report; expected errors → one line and exit status 2."""
+def run_stage(stage: str, inputs: dict, outputs: dict, params: dict, debug: bool = False,
+              allow_outside_validity: bool = False) -> int:
+    """Run ``nps.stages.<stage>.run``; print its report; expected errors → one line and exit status 2.
+    ``allow_outside_validity``: the campaign switch, passed to the stage as a param when set."""
+    if allow_outside_validity:
+        params = {**params, "allow_outside_validity": True}
     from nps.stages import stage_function
+
+    from nps.resources import ResourceError
 
     try:
         report = stage_function(stage)(inputs, outputs, params)
-    except (ValueError, KeyError, OSError) as error:
+    except (ValueError, KeyError, OSError, ResourceError) as error:
         if debug:
             raise
         message = error.args[0] if isinstance(error, KeyError) and error.args else error

@@ -24,7 +24,8 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--thickness", default=default("models.thickness"), help="dual_compact or compact_monopole")
     ap.add_argument("--chord-fractions", type=float, nargs=2, default=default("acoustics.dual_compact_chord_fractions"),
                     metavar=("FRONT", "REAR"), help="dual-compact line positions from the leading edge (fractions of chord)")
-    ap.add_argument("--variant", default="base", help="load variant named in the metadata (base or bvi)")
+    ap.add_argument("--variant", choices=("base", "bvi"),
+                    help="load variant: base (trimmed loads) or bvi (default: from the disk tables' provenance)")
     ap.add_argument("--out-dir", required=True, help="output directory of the per-rotor signal tables")
     args = ap.parse_args(argv)
     try:
@@ -36,6 +37,6 @@ def main(argv: list[str]) -> int:
     params = {"rotors": names, "hinge_offsets_m": hinges, "thickness": args.thickness, "chord_fractions": args.chord_fractions,
               "samples_per_rev": args.samples_per_rev, "aircraft": aircraft["name"],
               "segment": provenance(args.trim, "segment"), "obsset": provenance(args.observers, "obsset"),
-              "variant": args.variant}
+              "variant": args.variant or ("bvi" if provenance(f"{args.disks}/{names[0]}.parquet", "stage") == "bvi" else "base")}
     inputs = {"disks": args.disks, "trim": args.trim, "observers": args.observers}
     return run_stage("acoustics", inputs, {"signals": args.out_dir}, params, args.debug)

@@ -11,7 +11,7 @@ from nps.config import ConfigError, aircraft_rotor, load_aircraft
 
 
 def main(argv: list[str]) -> int:
-    ap = parser("loads", __doc__)
+    ap = parser("loads", __doc__, validity=True)
     ap.add_argument("--aircraft", required=True, help="aircraft YAML (config/aircraft/NAME.yaml)")
     ap.add_argument("--trim", required=True, help="aircraft trim artifact (results/.../trim.parquet)")
     ap.add_argument("--rotor", nargs="+", help="rotor names (default: every rotor of the aircraft)")
@@ -27,5 +27,6 @@ def main(argv: list[str]) -> int:
         return fail(str(error))
     params = {"rotors": rotors, "n_psi": args.n_psi, "n_r": args.n_r, "aircraft": aircraft["name"],
               "segment": provenance(args.trim, "segment")}
-    return run_stage("loads", {"trim": args.trim}, {"loads": args.out_dir}, params, args.debug)
+    return run_stage("loads", {"trim": args.trim}, {"loads": args.out_dir}, params, args.debug,
+                     args.allow_outside_validity)
 

@@ -14,7 +14,7 @@ from nps.metrics import rotor_solidities
 
 
 def main(argv: list[str]) -> int:
-    ap = parser("metrics", __doc__)
+    ap = parser("metrics", __doc__, validity=True)
     ap.add_argument("--aircraft", required=True, help="aircraft YAML (rotor solidities)")
     ap.add_argument("--trim", required=True, help="trim.parquet")
     ap.add_argument("--observers", required=True, help="observers/{obsset}.parquet")
@@ -38,10 +38,13 @@ def main(argv: list[str]) -> int:
         return fail(str(error))
     atmosphere = {"altitude_m": args.altitude_m, "isa_delta_K": args.isa_delta_k,
                   "relative_humidity_pct": args.relative_humidity_pct}
-    params = {"rotors": args.rotor or [r["name"] for r in aircraft["rotors"]], "solidity": rotor_solidities(aircraft),
+    names = args.rotor or [r["name"] for r in aircraft["rotors"]]
+    params = {"rotors": names, "solidity": rotor_solidities(aircraft),
+              "rotor_configs": {r["name"]: r for r in aircraft["rotors"]},
               "atmosphere": atmosphere, "broadband": not args.no_broadband, "absorption": not args.no_absorption,
               "harmonics": args.bvispl_harmonics, "aircraft": aircraft["name"], "segment": provenance(args.trim, "segment"),
-              "obsset": provenance(args.observers, "obsset"), "variant": "base"}
+              "obsset": provenance(args.observers, "obsset"), "variant": provenance(f"{args.signals}/{names[0]}.parquet", "variant") or "base"}
     inputs = {"signals": args.signals, "trim": args.trim, "observers": args.observers, **({"hsi": args.hsi} if args.hsi else {})}
     outputs = {"metrics": args.out, "bands": args.bands_out, **({"figure": args.figure} if args.figure else {})}
-    return run_stage("metrics", inputs, outputs, params, args.debug)
+    return run_stage("metrics", inputs, outputs, params, args.debug,
+                     args.allow_outside_validity)

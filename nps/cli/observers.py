@@ -12,7 +12,7 @@ from nps.observers import rotor_roles
 
 
 def main(argv: list[str]) -> int:
-    ap = parser("observers", __doc__)
+    ap = parser("observers", __doc__, validity=True)
     ap.add_argument("--config", required=True, help="campaign config (config/config.yaml) holding observer_sets")
     ap.add_argument("--set", required=True, help="observer set name in observer_sets")
     ap.add_argument("--aircraft", required=True, help="aircraft YAML (config/aircraft/NAME.yaml)")
@@ -27,5 +27,7 @@ def main(argv: list[str]) -> int:
     except ConfigError as error:
         return fail(str(error))
     params = {"spec": sets[args.set], "rotor_roles": rotor_roles(aircraft), "reference_radius_m": aircraft["rotors"][0]["radius_m"],
+              "rotors": {r["name"]: r for r in aircraft["rotors"]},
               "aircraft": aircraft["name"], "segment": provenance(args.trim, "segment"), "obsset": args.set}
-    return run_stage("observers", {"trim": args.trim}, {"observers": args.out}, params, args.debug)
+    return run_stage("observers", {"trim": args.trim}, {"observers": args.out}, params, args.debug,
+                     args.allow_outside_validity)

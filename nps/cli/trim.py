@@ -7,7 +7,7 @@ from nps.config import ConfigError, load_aircraft, load_mission
 
 
 def main(argv: list[str]) -> int:
-    ap = parser("trim", __doc__)
+    ap = parser("trim", __doc__, validity=True)
     ap.add_argument("--aircraft", required=True, help="aircraft YAML (config/aircraft/NAME.yaml)")
     ap.add_argument("--mission", required=True, help="mission YAML (config/missions/NAME.yaml)")
     ap.add_argument("--segment", required=True, help="segment id, e.g. seg3")
@@ -30,4 +30,5 @@ def main(argv: list[str]) -> int:
                   "relative_humidity_pct": args.relative_humidity_pct}
     params = {"aircraft_config": aircraft, "speeds": segment["aircraft"][aircraft["name"]], "atmosphere": atmosphere,
               "segment": args.segment}
-    return run_stage("trim", {}, {"trim": args.out}, params, args.debug)
+    return run_stage("trim", {}, {"trim": args.out}, params, args.debug,
+                     args.allow_outside_validity)

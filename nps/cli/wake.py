@@ -12,7 +12,7 @@ from nps.config import ConfigError, aircraft_rotor, load_aircraft
 
 
 def main(argv: list[str]) -> int:
-    ap = parser("wake", __doc__)
+    ap = parser("wake", __doc__, validity=True)
     ap.add_argument("--aircraft", required=True, help="aircraft YAML (config/aircraft/NAME.yaml)")
     ap.add_argument("--trim", required=True, help="aircraft trim artifact (results/.../trim.parquet)")
     ap.add_argument("--loads-dir", required=True, help="loads directory (results/.../loads)")
@@ -43,4 +43,5 @@ def main(argv: list[str]) -> int:
               "step_deg": args.step_deg, "unsteady": not args.quasi_steady, "aircraft": aircraft["name"],
               "segment": provenance(args.trim, "segment")}
     return run_stage("wake", {"trim": args.trim, "loads": args.loads_dir}, {"wake": args.wake_dir, "bvi": args.bvi_dir},
-                     params, args.debug)
+                     params, args.debug,
+                     args.allow_outside_validity)

@@ -19,7 +19,10 @@ import yaml
 REPO = Path(__file__).resolve().parents[2]
 
 TINY = {
-    "campaign": {"mission": "demo", "aircraft": ["helicopter", "coaxial"], "segments": ["seg2", "seg3"]},
+    # 2 wake revolutions are short of the ~2.5 the seg3 descent needs (docs/models/validity.md): run with the
+    # switch, the warning recorded in the wake and BVI tables' metadata and in the summary CSV
+    "campaign": {"mission": "demo", "aircraft": ["helicopter", "coaxial"], "segments": ["seg2", "seg3"],
+                 "allow_outside_validity": True},
     "observer_sets": {
         "hemisphere": {"kind": "hemisphere", "radius_R": 10.0, "n_elevation": 4, "n_azimuth": 8, "moving": True},
         "hsi": {"kind": "points_ahead", "radius_R": 10.0, "elevations_deg": [0.0, -26.0], "moving": True, "segments": ["seg2"]},

@@ -13,6 +13,8 @@ rule observers:
         spec=lambda wildcards: config["observer_sets"][wildcards.obsset],
         rotor_roles=lambda wildcards: {r["name"]: r["role"] for r in aircraft_config(wildcards)["rotors"]},
         reference_radius_m=lambda wildcards: aircraft_config(wildcards)["rotors"][0]["radius_m"],
+        rotors=rotor_configs,
+        allow_outside_validity=ALLOW_OUTSIDE_VALIDITY,
         code=code("observers"),
     log:
         log_path("observers", "{aircraft}/{segment}/{obsset}"),
@@ -48,7 +50,7 @@ rule acoustics:
         bench_path("acoustics", "{aircraft}/{segment}/{obsset}_{variant}")
     threads: 1
     resources:
-        mem_mb=2000,
+        mem_mb=job_mem_mb("acoustics"),
         runtime=10,
     script:
         STAGE_SCRIPT

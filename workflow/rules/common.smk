@@ -5,6 +5,7 @@ import sys
 from nps.config import ConfigError, load_campaign
 from nps.stages.code import stage_digest
 from nps.metrics import rotor_solidities
+from nps.resources import estimate_bytes, mem_mb, observer_count
 
 
 
@@ -15,6 +16,8 @@ try:
 except ConfigError as error:
     sys.stderr.write(f"NPS configuration error: {error}\n")
     raise SystemExit(1)
+# campaign switch: findings outside the models' validity envelope become warnings (nps.validity)
+ALLOW_OUTSIDE_VALIDITY = config["campaign"].get("allow_outside_validity", False)
 RESULTS = "results"
 ALL_TARGETS = []
 STAGE_SCRIPT = "../scripts/stage.py"
@@ -135,3 +138,16 @@ def summary_inputs(wildcards):
         inputs.update({f"metrics_{s}_{v}": f"{base}/{s}/metrics/hemisphere_{v}.parquet" for v in CAMPAIGN.variants(s)})
     inputs.update({f"wake_{s}": f"{base}/{s}/wake" for s in CAMPAIGN.bvi_segments()})
     return inputs
+
+
+# ---- resources: mem_mb of the jobs whose arrays scale with the resolution (nps.resources) ----
+def job_mem_mb(stage):
+    """``resources: mem_mb`` of a ``stage`` job (loads, wake, acoustics, hsi, metrics): the estimate of
+    nps.resources from the resolution, the aircraft's rotors and the job's observer set, x 1.25."""
+
+    def mem(wildcards):
+        n_observers = observer_count(config["observer_sets"][wildcards.obsset]) if "obsset" in wildcards.keys() else 1
+        hsi = stage == "metrics" and wildcards.segment in CAMPAIGN.hsi_segments()
+        return mem_mb(estimate_bytes(stage, config["resolution"], n_observers, len(rotor_names(wildcards.aircraft)), hsi))
+
+    return mem

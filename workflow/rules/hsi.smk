@@ -20,7 +20,7 @@ rule hsi:
         bench_path("hsi", "{aircraft}/{segment}/{obsset}_{variant}")
     threads: 1
     resources:
-        mem_mb=2000,
+        mem_mb=job_mem_mb("hsi"),
         runtime=10,
     script:
         STAGE_SCRIPT

@@ -12,6 +12,7 @@ rule loads:
         rotors=rotor_configs,
         n_psi=config["resolution"]["n_psi"],
         n_r=config["resolution"]["n_r"],
+        allow_outside_validity=ALLOW_OUTSIDE_VALIDITY,
         code=code("loads"),
     log:
         log_path("loads"),
@@ -19,7 +20,7 @@ rule loads:
         bench_path("loads")
     threads: 1
     resources:
-        mem_mb=800,
+        mem_mb=job_mem_mb("loads"),
         runtime=5,
     script:
         STAGE_SCRIPT

@@ -24,6 +24,8 @@ rule metrics:
         broadband=config["models"]["broadband"],
         absorption=config["models"]["absorption"],
         harmonics=config["acoustics"]["bvispl_harmonics"],
+        rotor_configs=rotor_configs,
+        allow_outside_validity=ALLOW_OUTSIDE_VALIDITY,
         code=code("metrics"),
     log:
         log_path("metrics", "{aircraft}/{segment}/{obsset}_{variant}"),
@@ -31,7 +33,7 @@ rule metrics:
         bench_path("metrics", "{aircraft}/{segment}/{obsset}_{variant}")
     threads: 1
     resources:
-        mem_mb=1500,
+        mem_mb=job_mem_mb("metrics"),
         runtime=10,
     script:
         STAGE_SCRIPT

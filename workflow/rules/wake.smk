@@ -18,6 +18,7 @@ rule wake:
         wake=config["wake"],
         revolutions=config["resolution"]["wake_revolutions"],
         steps_per_rev=config["resolution"]["n_psi"],
+        allow_outside_validity=ALLOW_OUTSIDE_VALIDITY,
         code=code("wake"),
     log:
         log_path("wake"),
@@ -25,7 +26,7 @@ rule wake:
         bench_path("wake")
     threads: 1
     resources:
-        mem_mb=1500,
+        mem_mb=job_mem_mb("wake"),
         runtime=10,
     script:
         STAGE_SCRIPT
