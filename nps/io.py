@@ -78,6 +78,8 @@ def write_table(
     Returns the path written.
     """
     path = Path(path)
+    if path.is_dir():
+        raise ArtifactError(f"{path}: is a directory; expected the path of the {stage} Parquet file")
     check_finite(df, f"{path} ({stage})")
     if schema is None:
         schema = pa.schema([pa.field(str(c), _arrow_type(df[c])) for c in df.columns])

@@ -15,11 +15,17 @@ import sys
 from nps.config import schema_default
 
 
+class _Parser(argparse.ArgumentParser):
+    """Argument parser whose usage errors are one line on stderr, exit status 2."""
+
+    def error(self, message: str):
+        self.exit(2, f"error: {self.prog}: {message} (see --help)\n")
+
+
 def parser(stage: str, description: str, validity: bool = False) -> argparse.ArgumentParser:
     """Argument parser of ``python -m nps <stage>`` with the common ``--debug`` option (and, for a stage
     with validity checks, ``--allow-outside-validity``, the campaign switch of docs/models/validity.md)."""
-    ap = argparse.ArgumentParser(prog=f"python -m nps {stage}", description=description,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = _Parser(prog=f"python -m nps {stage}", description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--debug", action="store_true", help="show the traceback of an error")
     if validity:
         ap.add_argument("--allow-outside-validity", action="store_true",
@@ -52,6 +58,18 @@ def run_stage(stage: str, inputs: dict, outputs: dict, params: dict, debug: bool
         return 2
     print(report)
     return 0
+
+
+def option_problem(options: dict) -> str | None:
+    """First command-line value outside its configuration-schema field: ``options`` maps the option
+    (``--isa-delta-k``) to (schema field, value); returns ``"--isa-delta-k: expected ..."`` or None."""
+    from nps.config import field_problem
+
+    for option, (field, value) in options.items():
+        problem = field_problem("config", field, value)
+        if problem:
+            return f"{option}: {problem}"
+    return None
 
 
 def fail(message: str) -> int:

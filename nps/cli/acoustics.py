@@ -8,7 +8,7 @@ aircraft's common grid (one revolution of the first rotor) into ``--out-dir``.
 
 from __future__ import annotations
 
-from nps.cli import default, fail, parser, provenance, run_stage
+from nps.cli import default, fail, option_problem, parser, provenance, run_stage
 from nps.config import ConfigError, aircraft_rotor, load_aircraft
 
 
@@ -28,6 +28,11 @@ def main(argv: list[str]) -> int:
                     help="load variant: base (trimmed loads) or bvi (default: from the disk tables' provenance)")
     ap.add_argument("--out-dir", required=True, help="output directory of the per-rotor signal tables")
     args = ap.parse_args(argv)
+    problem = option_problem({"--samples-per-rev": ("resolution.samples_per_rev", args.samples_per_rev),
+                              "--thickness": ("models.thickness", args.thickness),
+                              "--chord-fractions": ("acoustics.dual_compact_chord_fractions", args.chord_fractions)})
+    if problem:
+        return fail(problem)
     try:
         aircraft = load_aircraft(args.aircraft)
         names = args.rotor or [r["name"] for r in aircraft["rotors"]]

@@ -8,7 +8,7 @@ and the trim artifact; writes the metrics table (one row per observer), the band
 
 from __future__ import annotations
 
-from nps.cli import default, fail, parser, provenance, run_stage
+from nps.cli import default, fail, option_problem, parser, provenance, run_stage
 from nps.config import ConfigError, load_aircraft
 from nps.metrics import rotor_solidities
 
@@ -32,6 +32,12 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--bands-out", required=True, help="1/3-octave band Parquet")
     ap.add_argument("--figure", help="spectrum figure (PNG) of the loudest observer")
     args = ap.parse_args(argv)
+    problem = option_problem({"--altitude-m": ("atmosphere.altitude_m", args.altitude_m),
+                              "--isa-delta-k": ("atmosphere.isa_delta_K", args.isa_delta_k),
+                              "--relative-humidity-pct": ("atmosphere.relative_humidity_pct", args.relative_humidity_pct),
+                              "--bvispl-harmonics": ("acoustics.bvispl_harmonics", args.bvispl_harmonics)})
+    if problem:
+        return fail(problem)
     try:
         aircraft = load_aircraft(args.aircraft)
     except ConfigError as error:

@@ -7,7 +7,7 @@ hub of the lift rotors and its radii are in first-rotor radii (nps.observers).
 from __future__ import annotations
 
 from nps.cli import fail, parser, provenance, run_stage
-from nps.config import ConfigError, load_aircraft, read_yaml
+from nps.config import ConfigError, load_aircraft, load_observer_sets
 from nps.observers import rotor_roles
 
 
@@ -20,7 +20,7 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--out", required=True, help="observer table Parquet (results/.../observers/SET.parquet)")
     args = ap.parse_args(argv)
     try:
-        sets = (read_yaml(args.config) or {}).get("observer_sets", {})
+        sets = load_observer_sets(args.config)
         if args.set not in sets:
             raise ConfigError(f"{args.config}: observer_sets: no set named '{args.set}'; sets: {list(sets)}")
         aircraft = load_aircraft(args.aircraft)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from nps.cli import default, fail, parser, run_stage
+from nps.cli import default, fail, option_problem, parser, run_stage
 from nps.config import ConfigError, load_aircraft, load_mission
 
 
@@ -16,6 +16,11 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--relative-humidity-pct", type=float, default=default("atmosphere.relative_humidity_pct"))
     ap.add_argument("--out", required=True, help="output Parquet (one row per rotor)")
     args = ap.parse_args(argv)
+    problem = option_problem({"--altitude-m": ("atmosphere.altitude_m", args.altitude_m),
+                              "--isa-delta-k": ("atmosphere.isa_delta_K", args.isa_delta_k),
+                              "--relative-humidity-pct": ("atmosphere.relative_humidity_pct", args.relative_humidity_pct)})
+    if problem:
+        return fail(problem)
     try:
         aircraft = load_aircraft(args.aircraft)
         mission = load_mission(args.mission)
