@@ -5,9 +5,9 @@ import os
 import sys
 
 sys.path.insert(0, workflow.basedir)
-# Scripts run from .snakemake/scripts: make the nps package importable there, keep numba's
-# on-disk cache inside the project (its key must not depend on a temporary script copy).
-os.environ.update(PYTHONPATH=workflow.basedir, MPLBACKEND="Agg")
+# Scripts run from .snakemake/scripts: make the nps package importable there (ahead of the user's
+# PYTHONPATH), keep numba's on-disk cache inside the project (its key must not depend on a temporary script copy).
+os.environ.update(PYTHONPATH=os.pathsep.join(filter(None, [workflow.basedir, os.environ.get("PYTHONPATH")])), MPLBACKEND="Agg")
 os.environ.setdefault("NUMBA_CACHE_DIR", os.path.join(workflow.basedir, ".numba_cache"))
 
 CONFIG_FILE = "config/config.yaml"

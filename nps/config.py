@@ -33,8 +33,8 @@ def _field_path(parts) -> str:
 
 # name patterns of the schemas, in words: names become file names and workflow wildcards
 PATTERN_WORDS = {
-    "^[a-z][a-z0-9_]*$": "a lower-case letter, then lower-case letters, digits or '_' (the name becomes part of "
-                         "file names and of the workflow's wildcards)",
+    "^[a-z][a-z0-9_]*$": "a lower-case letter followed by lower-case letters, digits or '_' (the name becomes "
+                         "part of file names and of the workflow's wildcards)",
     "^seg[0-9]+$": "'seg' followed by digits, e.g. seg3 (the id becomes a directory name and a workflow wildcard)",
 }
 
@@ -48,7 +48,7 @@ def _describe(error: jsonschema.ValidationError) -> tuple[str, str]:
         if kind == "enum":
             return _field_path(path + [error.instance]), _unknown_key(error.instance, value)
         if kind == "pattern":
-            return _field_path(path + [error.instance]), f"expected a name of {PATTERN_WORDS.get(value, repr(value))}"
+            return _field_path(path + [error.instance]), f"expected a name made of {PATTERN_WORDS.get(value, repr(value))}"
     if kind == "additionalProperties":
         allowed = sorted(error.schema.get("properties", {}))
         extra = sorted(set(error.instance) - set(allowed))

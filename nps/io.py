@@ -221,4 +221,4 @@ def rotor_path(directory: str | os.PathLike, rotor: str, suffix: str = "") -> Pa
 
 def read_signals(directory: str | os.PathLike, rotors) -> dict[str, pd.DataFrame]:
     """Rotor name → signal table (columns :data:`SIGNAL_COLUMNS`) of every rotor in a signals directory."""
-    return {r: read_table(rotor_path(directory, r), required=SIGNAL_COLUMNS, nonempty=True) for r in rotors}
+    return {r: read_table(rotor_path(directory, r), required=SIGNAL_COLUMNS, nonempty=True, finite=True) for r in rotors}

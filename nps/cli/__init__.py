@@ -46,14 +46,19 @@ def run_stage(stage: str, inputs: dict, outputs: dict, params: dict, debug: bool
         params = {**params, "allow_outside_validity": True}
     from nps.stages import stage_function
 
+    from nps.bet import TrimError
     from nps.resources import ResourceError
+    from nps.trim import AircraftTrimError
 
     try:
         report = stage_function(stage)(inputs, outputs, params)
-    except (ValueError, KeyError, OSError, ResourceError) as error:
+    except (ValueError, KeyError, OSError, ResourceError, TrimError, AircraftTrimError) as error:
         if debug:
             raise
         message = error.args[0] if isinstance(error, KeyError) and error.args else error
+        if isinstance(error, OSError) and error.filename:
+            blocked = " (a file is where an output directory must go)" if isinstance(error, (FileExistsError, NotADirectoryError)) else ""
+            message = f"{error.filename}: {error.strerror}{blocked}"
         print(f"error: {message}", file=sys.stderr)
         return 2
     print(report)

@@ -86,8 +86,16 @@ def test_campaign_reproduces_the_committed_manifest(campaign_dir):
     sys.path.insert(0, str(REPO / "benchmarks"))
     from artifact_digests import compare, digests, read_manifest
 
-    problems = compare(digests(campaign_dir / "results"), read_manifest(REPO / "tests/data/manifests/tiny_campaign.sha256"))
+    results = campaign_dir / "results"
+    manifest = read_manifest(REPO / "tests/data/manifests/tiny_campaign.sha256")
+    # the seg3 wake and BVI tables (2 wake revolutions, short of the descent's ~2.5) carry their validity
+    # warning, the manifest predates it: byte-identical once that one metadata key is removed
+    warned = sorted(n for n in manifest if b"nps.validity_warnings" in (pq.read_schema(results / n).metadata or {}))
+    assert warned == sorted(n for n in manifest if re.fullmatch(r"\w+/seg3/(wake|bvi)/\w+\.parquet", n)), warned
+    problems = compare(digests(results, drop=("nps.validity_warnings",)), manifest)
     assert not problems, problems[:20]
+    summary = (results / "helicopter/summary.csv").read_text()
+    assert "rotor 'main': wake_revolutions = 2 is outside the validity limit" in summary
 
 
 def test_failing_job_writes_its_error_into_its_log(tmp_path):
