@@ -1,11 +1,13 @@
-"""Wall time of a finished campaign, per stage, from the Snakemake benchmark files.
+"""Wall time of a finished campaign, per stage, from the Snakemake benchmark files and job logs.
 
 Reads ``results/benchmarks/<rule>/**/*.tsv`` (one file per job, column ``s`` = wall seconds of the
-job, ``cpu_time``, ``max_rss`` in MB) and prints per rule: jobs, summed job wall time, mean and
-largest job, largest resident memory. The campaign's elapsed time is about the summed job time
-divided by the number of parallel jobs (``-j``) plus Snakemake's own scheduling.
+job, ``cpu_time``, ``max_rss`` in MB) and the last line of each job log ``results/logs/<rule>/**/*.log``
+(``timing: start-up S s, work W s``, written by nps.stages.job) and prints per rule: jobs, summed
+job wall time, mean and largest job, mean start-up (process start to the stage function imported)
+and mean work (the stage function), largest resident memory. The campaign's elapsed time is about
+the summed job time divided by the number of parallel jobs (``-j``) plus Snakemake's own scheduling.
 
-    python benchmarks/campaign_times.py [results/benchmarks]
+    python benchmarks/campaign_times.py [results]
 """
 
 from __future__ import annotations
@@ -16,7 +18,19 @@ from pathlib import Path
 import pandas as pd
 
 
-def stage_table(benchmark_dir: Path) -> pd.DataFrame:
+def log_timings(log_dir: Path) -> pd.DataFrame:
+    """Per job (rule, start_up_s, work_s) from the ``timing:`` line of its log."""
+    rows = []
+    for path in sorted(log_dir.rglob("*.log")):
+        lines = path.read_text().splitlines()
+        if lines and lines[-1].startswith("timing: start-up "):
+            words = lines[-1].split()
+            rows.append({"rule": path.relative_to(log_dir).parts[0], "start_up_s": float(words[2]), "work_s": float(words[5])})
+    return pd.DataFrame(rows, columns=["rule", "start_up_s", "work_s"])
+
+
+def stage_table(results: Path) -> pd.DataFrame:
+    benchmark_dir = results / "benchmarks"
     rows = []
     for path in sorted(benchmark_dir.rglob("*.tsv")):
         last = pd.read_csv(path, sep="\t").iloc[-1]
@@ -27,12 +41,12 @@ def stage_table(benchmark_dir: Path) -> pd.DataFrame:
     jobs = pd.DataFrame(rows)
     table = jobs.groupby("rule").agg(jobs=("s", "size"), total_s=("s", "sum"), mean_s=("s", "mean"),
                                      max_s=("s", "max"), cpu_s=("cpu_s", "sum"), max_rss_mb=("max_rss_mb", "max"))
-    return table.sort_values("total_s", ascending=False)
+    timings = log_timings(results / "logs").groupby("rule").agg(start_up_s=("start_up_s", "mean"), work_s=("work_s", "mean"))
+    return table.join(timings).sort_values("total_s", ascending=False)
 
 
 def main(argv: list[str]) -> int:
-    directory = Path(argv[0] if argv else "results/benchmarks")
-    table = stage_table(directory)
+    table = stage_table(Path(argv[0] if argv else "results"))
     pd.set_option("display.width", 120)
     print(table.round(2).to_string())
     print(f"\n{int(table['jobs'].sum())} jobs, summed job wall time {table['total_s'].sum():.0f} s "

@@ -17,6 +17,10 @@ from typing import Any, Iterator
 import jsonschema
 import yaml
 
+from nps.airfoils import AirfoilError
+from nps.blade import BladeError
+from nps.rotor import RotorGeometry
+
 SCHEMA_DIR = Path(__file__).resolve().parent / "schemas"
 
 
@@ -203,7 +207,9 @@ def load_aircraft(path: str | Path) -> dict:
         elif rotor["role"] == "lift" and rotor["thrust_axis_body"][2] <= 0.0:
             problems.append((f"{where}.thrust_axis_body", "expected a lift rotor's thrust axis pointing up (z > 0 in the body "
                                                           f"frame: x forward, y port, z up), got {rotor['thrust_axis_body']}"))
-    problems += _hub_problems(data["rotors"])
+        problems += _rotor_sections(rotor, where, Path(path).parent)
+    if not problems:  # the rotors' geometry (blade tables resolved) is readable
+        problems += _hub_problems(data["rotors"])
     if not any(rotor["role"] == "lift" for rotor in data["rotors"]):
         problems.append(("rotors", "expected at least one rotor with role 'lift'"))
     if sum(rotor["role"] == "antitorque" for rotor in data["rotors"]) > 1:
@@ -217,6 +223,9 @@ def load_aircraft(path: str | Path) -> dict:
 def _hub_problems(rotors: list[dict]) -> list[tuple[str, str]]:
     """Rotors whose hub lies inside the disk another rotor's blades sweep: in that rotor's hub plane
     (within one of its chords along its thrust axis) and inside its radius."""
+    from nps.rotor import RotorGeometry  # reference chord of linear blades and blade tables alike
+
+    chords = [RotorGeometry.from_config(rotor).chord_m for rotor in rotors]
     problems, pairs = [], set()
     for i, other in enumerate(rotors):
         axis = [c / math.hypot(*other["thrust_axis_body"]) for c in other["thrust_axis_body"]] \
@@ -227,12 +236,12 @@ def _hub_problems(rotors: list[dict]) -> list[tuple[str, str]]:
             d = [a - b for a, b in zip(rotor["hub_position_m"], other["hub_position_m"])]
             axial = sum(a * b for a, b in zip(d, axis))
             in_plane = math.sqrt(max(0.0, sum(a * a for a in d) - axial * axial))
-            if abs(axial) < other["chord_m"] and in_plane < other["radius_m"]:
+            if abs(axial) < chords[i] and in_plane < other["radius_m"]:
                 pairs.add(frozenset((i, j)))
                 problems.append((f"rotors[{j}].hub_position_m", (
                     f"hub {rotor['hub_position_m']} lies inside the disk swept by rotor '{other['name']}' "
                     f"({in_plane:.3g} m from its hub in its plane, radius {other['radius_m']} m; {abs(axial):.3g} m along its axis, "
-                    f"chord {other['chord_m']} m): expected the hub outside the other rotors' blade paths")))
+                    f"chord {chords[i]:.3g} m): expected the hub outside the other rotors' blade paths")))
     return problems
 
 
@@ -270,6 +279,49 @@ def load_observer_sets(path: str | Path) -> dict:
     _raise(path, problems)
     _raise(path, observer_set_problems(data["observer_sets"]))
     return data["observer_sets"]
+
+
+def _rotor_sections(rotor: dict, where: str, base: Path) -> list[tuple[str, str]]:
+    """Cross checks of one rotor's blade and airfoil tables and control fields.
+
+    Table paths are resolved against ``base`` (the aircraft file's directory) and replaced by
+    absolute paths in ``rotor``; the tables are then read once so that a malformed file or an
+    unknown airfoil name stops here, before any computation.
+    """
+    problems = []
+    if "blade" in rotor:
+        for key in ("chord_m", "twist_deg", "thickness_ratio"):
+            if key in rotor:
+                problems.append((f"{where}.{key}", "expected no linear-blade field next to a blade table (the table gives it)"))
+    holders = [("airfoil", rotor.get("airfoil", {}))]
+    holders += [(f"airfoils.{name}", foil) for name, foil in rotor.get("airfoils", {}).items()]
+    for field, foil in holders:
+        if "table" in foil:
+            extra = sorted(set(foil) - {"table", "extrapolation", "reynolds"})
+            if extra:
+                problems.append((f"{where}.{field}.{extra[0]}", "expected no linear-model parameter next to a table"))
+        else:
+            for key in ("extrapolation", "reynolds"):
+                if key in foil:
+                    problems.append((f"{where}.{field}.{key}", "applies to a table only; expected a table"))
+    mode = rotor.get("control", "collective")
+    if mode == "collective" and "pitch_deg" in rotor:
+        problems.append((f"{where}.pitch_deg", "expected no pitch_deg with control 'collective' (the trim sets the pitch)"))
+    if mode != "collective" and "pitch_deg" not in rotor:
+        problems.append((f"{where}.pitch_deg", f"required with control '{mode}'"))
+    for field, holder in holders + [("blade", rotor.get("blade", {}))]:
+        if "table" in holder:
+            table = base / holder["table"]
+            if not table.is_file():
+                problems.append((f"{where}.{field}.table", f"file not found: {table}"))
+            else:
+                holder["table"] = str(table.resolve())
+    if not problems:
+        try:
+            RotorGeometry.from_config(rotor)
+        except (AirfoilError, BladeError) as exc:
+            problems.append((where, str(exc)))
+    return problems
 
 
 def aircraft_rotor(aircraft: dict, name: str, path: str | Path) -> dict:
@@ -356,6 +408,27 @@ class Campaign:
         return self._listed(self.config["figures"][f"{kind}_segments"])
 
 
+def _footprint_problems(config: dict, mission: dict, all_ids: list[str]) -> list[tuple[str, str]]:
+    """Cross references of the ``footprint`` and ``certification`` sections (docs/footprint.md)."""
+    problems = []
+    footprint = config.get("footprint")
+    if footprint is not None:
+        spec = config["observer_sets"].get(footprint["source_set"])
+        if spec is None or spec["kind"] != "hemisphere" or not spec.get("moving", True):
+            problems.append(("footprint.source_set", f"expected a moving hemisphere of observer_sets, got '{footprint['source_set']}'"))
+        for index, leg in enumerate(mission.get("profile", [])):
+            if leg["segment"] not in all_ids:
+                problems.append((f"mission profile[{index}].segment", f"expected one of {all_ids}, got '{leg['segment']}'"))
+    certification = config.get("certification")
+    if certification is not None:
+        if footprint is None:
+            problems.append(("certification", "needs the footprint section (its source_set and ground)"))
+        for procedure, segment_id in certification["segments"].items():
+            if segment_id not in all_ids:
+                problems.append((f"certification.segments.{procedure}", f"expected one of {all_ids}, got '{segment_id}'"))
+    return problems
+
+
 def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", root: str | Path = ".") -> Campaign:
     """Validate the campaign configuration and every file it names, with cross references."""
     validate(config, "config", config_file)
@@ -392,6 +465,7 @@ def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", 
         for index, segment_id in enumerate(obs.get("segments", [])):
             if segment_id not in all_ids:
                 problems.append((f"observer_sets.{set_name}.segments[{index}]", f"expected one of {all_ids}, got '{segment_id}'"))
+    problems += _footprint_problems(config, mission, all_ids)
     _raise(config_file, problems)
     for index, segment in enumerate(mission["segments"]):
         if segment["id"] not in segments:

@@ -18,6 +18,7 @@ import json
 import os
 import re
 import secrets
+from functools import lru_cache
 from pathlib import Path
 from typing import Mapping
 
@@ -36,6 +37,7 @@ class ArtifactError(ValueError):
     """An artifact is missing, malformed or contains non-finite numbers."""
 
 
+@lru_cache(maxsize=1)
 def source_hash() -> str:
     """SHA-256 (first 16 hex digits) of the ``nps`` package sources, in path order."""
     digest = hashlib.sha256()
@@ -64,6 +66,21 @@ def check_finite(df: pd.DataFrame, what: str) -> None:
             raise ArtifactError(f"{what}: column '{name}' has {bad} non-finite value(s)")
 
 
+def _arrow_table(df: pd.DataFrame, schema: pa.Schema) -> pa.Table:
+    """``df`` as an Arrow table with ``schema``, identical to ``pa.Table.from_pandas(df, schema=schema)``.
+
+    That direct call converts categorical columns to strings element by element (≈0.3 s for a
+    rotor's signal table); converting natively (dictionary arrays) and casting is ~20× faster. The
+    pandas metadata pyarrow attaches depends on the dtypes only, so it is taken from the first row.
+    """
+    head = pa.Table.from_pandas(df.iloc[:1], schema=schema, preserve_index=False)
+    try:
+        table = pa.Table.from_pandas(df, preserve_index=False).cast(schema)
+    except (pa.ArrowInvalid, pa.ArrowNotImplementedError, pa.ArrowTypeError):  # types the cast cannot map
+        return pa.Table.from_pandas(df, schema=schema, preserve_index=False)
+    return table.replace_schema_metadata(head.schema.metadata)
+
+
 def write_table(
     df: pd.DataFrame,
     path: str | os.PathLike,
@@ -83,7 +100,7 @@ def write_table(
     check_finite(df, f"{path} ({stage})")
     if schema is None:
         schema = pa.schema([pa.field(str(c), _arrow_type(df[c])) for c in df.columns])
-    table = pa.Table.from_pandas(df, schema=schema, preserve_index=False)
+    table = _arrow_table(df, schema)
     meta = {
         b"nps.version": nps.__version__.encode(),
         b"nps.source_hash": source_hash().encode(),

@@ -1,7 +1,7 @@
 """Rotor description shared by the loads, wake, BVI and acoustics stages.
 
 Geometry comes from an aircraft configuration file (``config/aircraft/*.yaml``, validated
-by ``workflow/schemas/aircraft.schema.yaml``); the operating point comes from the aircraft
+by ``nps/schemas/aircraft.schema.yaml``); the operating point comes from the aircraft
 trim artifact (``trim.parquet``, one row per rotor). Frames and signs: docs/conventions.md.
 """
 
@@ -12,32 +12,24 @@ from typing import Mapping
 
 import numpy as np
 
-
-@dataclass(frozen=True)
-class Airfoil:
-    """Section aerodynamics.
-
-    c_l = a (α − α0) / sqrt(1 − M²) (Prandtl–Glauert, M capped at ``mach_cap``), limited to
-    ±``cl_max``; c_d = cd0 + cd1 α + cd2 α² (α in rad).
-    """
-
-    lift_slope_per_rad: float = 5.73
-    alpha0_rad: float = 0.0
-    cl_max: float = 1.4
-    cd0: float = 0.008
-    cd1: float = 0.0
-    cd2: float = 0.4
-    mach_cap: float = 0.95
+from nps.airfoils import Airfoil, LinearAirfoil, read_airfoil, section_coefficients
+from nps.blade import BladeError, BladeTable, blade_from_config
 
 
 @dataclass(frozen=True)
 class RotorGeometry:
     """Blade and hub description of one rotor (SI units).
 
-    Pitch θ(ψ, r) = θ0 + θ1c cos ψ + θ1s sin ψ + θtw(r), with linear twist
-    θtw(r) = twist_rad · (r/R − 0.75) so that θ0 is the pitch at 75 % radius.
-    ``thickness_ratio`` t/c of the section; ``hinge_offset_m`` e of the flap hinge;
-    ``lock_number`` γ = ρ a c R⁴ / I_β (at the reference density of the configuration).
+    Pitch θ(ψ, r) = θ0 + θ1c cos ψ + θ1s sin ψ + θtw(r), θ0 the pitch at 75 % radius. Without a
+    blade table (``blade`` None) the blade is the linear shorthand: constant ``chord_m`` and
+    ``thickness_ratio``, linear twist θtw(r) = twist_rad · (r/R − 0.75), ``airfoil`` at every
+    section. With a :class:`~nps.blade.BladeTable` the sections take the table's local chord,
+    twist, t/c and airfoil (names looked up in ``airfoils``; ``airfoil`` where the table names
+    none), and ``chord_m``, ``thickness_ratio``, ``airfoil`` are the rotor's reference values
+    (thrust-weighted chord for σ and I_β, t/c and airfoil at 75 % radius; ``twist_rad`` unused),
+    as :meth:`from_config` sets them. ``hinge_offset_m`` e of the flap hinge; ``lock_number``
+    γ = ρ a c R⁴ / I_β (at the reference density of the configuration, a and c the reference
+    lift slope and chord).
     """
 
     name: str
@@ -50,43 +42,111 @@ class RotorGeometry:
     lock_number: float
     hinge_offset_m: float = 0.0
     rotation_sign: int = 1
-    airfoil: Airfoil = field(default_factory=Airfoil)
+    airfoil: Airfoil = field(default_factory=LinearAirfoil)
+    blade: BladeTable | None = None
+    airfoils: Mapping[str, Airfoil] = field(default_factory=dict)
+
+    def __post_init__(self):
+        if self.blade is not None:
+            self.blade.check_covers(self.root_cutout_m, self.radius_m)
+            missing = sorted(set(self.blade.airfoils) - set(self.airfoils))
+            if missing:
+                raise BladeError(f"{self.blade.source}: airfoil: rotor '{self.name}' defines no airfoil named "
+                                 f"'{missing[0]}'; defined: {sorted(self.airfoils)}")
 
     @property
     def solidity(self) -> float:
-        """σ = B c / (π R)."""
+        """σ = B c / (π R) (c the reference chord)."""
         return self.n_blades * self.chord_m / (np.pi * self.radius_m)
 
     def twist_at(self, r_m) -> np.ndarray:
-        """θtw(r) in rad."""
-        return self.twist_rad * (np.asarray(r_m, dtype=float) / self.radius_m - 0.75)
+        """θtw(r) in rad, zero at 75 % radius."""
+        if self.blade is None:
+            return self.twist_rad * (np.asarray(r_m, dtype=float) / self.radius_m - 0.75)
+        return self.blade.at(r_m).twist_rad - self.blade.at(0.75 * self.radius_m).twist_rad
+
+    def chord_at(self, r_m):
+        """Local chord (m) at radii ``r_m``; the scalar ``chord_m`` for the linear shorthand."""
+        return self.chord_m if self.blade is None else self.blade.at(r_m).chord_m
+
+    def thickness_ratio_at(self, r_m):
+        """Local t/c at radii ``r_m``; the scalar ``thickness_ratio`` for the linear shorthand."""
+        return self.thickness_ratio if self.blade is None else self.blade.at(r_m).thickness_ratio
+
+    def coefficients_at(self, alpha_mod_rad, reverse_flow, mach, r_m):
+        """(c_l, c_d, c_m) of the local sections: the mod-π angle α, the reverse-flow mask
+        (U_T < 0) and M at radii ``r_m``, all broadcast; blended between table stations with
+        different airfoils (:meth:`nps.blade.BladeTable.airfoil_weights`)."""
+        if self.blade is None or not self.blade.airfoils:
+            return section_coefficients(self.airfoil, alpha_mod_rad, reverse_flow, mach)
+        weights = {k: w for k, w in self.blade.airfoil_weights(r_m).items() if w.any()}
+        if len(weights) == 1:
+            return section_coefficients(self.airfoils[next(iter(weights))], alpha_mod_rad, reverse_flow, mach)
+        total = None
+        for name, w in weights.items():
+            part = [w * c for c in section_coefficients(self.airfoils[name], alpha_mod_rad, reverse_flow, mach)]
+            total = part if total is None else [t + p for t, p in zip(total, part)]
+        return tuple(total)
 
     @classmethod
     def from_config(cls, rotor: Mapping) -> "RotorGeometry":
-        """Build from one validated ``rotors[]`` entry of an aircraft configuration."""
-        foil = rotor.get("airfoil", {})
-        airfoil = Airfoil(
-            lift_slope_per_rad=float(foil.get("lift_slope_per_rad", Airfoil.lift_slope_per_rad)),
-            alpha0_rad=np.radians(float(foil.get("alpha0_deg", 0.0))),
-            cl_max=float(foil.get("cl_max", Airfoil.cl_max)),
-            cd0=float(foil.get("cd0", Airfoil.cd0)),
-            cd1=float(foil.get("cd1", Airfoil.cd1)),
-            cd2=float(foil.get("cd2", Airfoil.cd2)),
-            mach_cap=float(foil.get("mach_cap", Airfoil.mach_cap)),
-        )
+        """Build from one validated ``rotors[]`` entry of an aircraft configuration.
+
+        Table paths (``airfoil.table``, ``airfoils.*.table``, ``blade.table``) are read as given
+        (:func:`nps.config.load_aircraft` makes them absolute, relative to the aircraft file).
+        """
+        name = str(rotor["name"])
+        radius = float(rotor["radius_m"])
+        root = float(rotor["root_cutout_m"])
+        blade = None
+        if "blade" in rotor:
+            blade = blade_from_config(rotor["blade"], radius, f"rotor '{name}': blade")
+            chord = blade.equivalent_chord_m(root, radius)
+            twist = 0.0
+            thickness = float(blade.at(0.75 * radius).thickness_ratio)
+        else:
+            chord = float(rotor["chord_m"])
+            twist = np.radians(float(rotor["twist_deg"]))
+            thickness = float(rotor["thickness_ratio"])
+        aspect_ratio = min((radius - root) / chord, 50.0)
+        airfoil = airfoil_from_config(rotor.get("airfoil", {}), aspect_ratio)
+        airfoils = {key: airfoil_from_config(value, aspect_ratio) for key, value in rotor.get("airfoils", {}).items()}
+        if blade is not None and blade.airfoils:
+            reference = blade.airfoils[int(np.argmin(np.abs(blade.radius_m - 0.75 * radius)))]
+            airfoil = airfoils.get(reference, airfoil)
         return cls(
-            name=str(rotor["name"]),
+            name=name,
             n_blades=int(rotor["n_blades"]),
-            radius_m=float(rotor["radius_m"]),
-            chord_m=float(rotor["chord_m"]),
-            root_cutout_m=float(rotor["root_cutout_m"]),
-            twist_rad=np.radians(float(rotor["twist_deg"])),
-            thickness_ratio=float(rotor["thickness_ratio"]),
+            radius_m=radius,
+            chord_m=chord,
+            root_cutout_m=root,
+            twist_rad=twist,
+            thickness_ratio=thickness,
             lock_number=float(rotor["lock_number"]),
             hinge_offset_m=float(rotor.get("hinge_offset_m", 0.0)),
             rotation_sign=1 if rotor["rotation"] == "ccw" else -1,
             airfoil=airfoil,
+            blade=blade,
+            airfoils=airfoils,
         )
+
+
+def airfoil_from_config(foil: Mapping, aspect_ratio: float) -> Airfoil:
+    """An ``airfoil`` entry: ``{table: path, extrapolation, reynolds}`` or the linear model's
+    parameters (defaults of :class:`~nps.airfoils.LinearAirfoil`); ``aspect_ratio`` of the
+    blade for the Viterna extension."""
+    if "table" in foil:
+        return read_airfoil(foil["table"], extrapolation=foil.get("extrapolation", "none"),
+                            aspect_ratio=aspect_ratio, reynolds=foil.get("reynolds"))
+    return LinearAirfoil(
+        lift_slope_per_rad=float(foil.get("lift_slope_per_rad", LinearAirfoil.lift_slope_per_rad)),
+        alpha0_rad=np.radians(float(foil.get("alpha0_deg", 0.0))),
+        cl_max=float(foil.get("cl_max", LinearAirfoil.cl_max)),
+        cd0=float(foil.get("cd0", LinearAirfoil.cd0)),
+        cd1=float(foil.get("cd1", LinearAirfoil.cd1)),
+        cd2=float(foil.get("cd2", LinearAirfoil.cd2)),
+        mach_cap=float(foil.get("mach_cap", LinearAirfoil.mach_cap)),
+    )
 
 
 @dataclass(frozen=True)

@@ -38,6 +38,7 @@ import pandas as pd
 
 from nps import frames
 from nps.atmosphere import AtmosphereState
+from nps.rotor import RotorGeometry
 
 G0_M_S2 = 9.80665
 INDUCED_POWER_FACTOR = 1.15
@@ -127,6 +128,7 @@ class _RotorState:
     omega_rad_s: float
     axis_b: np.ndarray
     r_bh: np.ndarray
+    geometry: RotorGeometry
 
     @property
     def radius_m(self) -> float:
@@ -151,8 +153,8 @@ def _rotor_aero(state: _RotorState, thrust_n: float, r_gb: np.ndarray, flight: F
     ct = thrust_n / (rho * area * tip_speed**2)
     mu = float(np.hypot(mu_x, mu_y))
     lam_i = glauert_inflow(ct, mu, mu_z)
-    solidity = rotor["n_blades"] * rotor["chord_m"] / (np.pi * radius)
-    cd0 = rotor.get("airfoil", {}).get("cd0", 0.008)
+    solidity = state.geometry.solidity
+    cd0 = state.geometry.airfoil.cd0
     power = thrust_n * tip_speed * (INDUCED_POWER_FACTOR * lam_i + mu_z)
     power += rho * area * tip_speed**3 * solidity * cd0 * (1.0 + 4.65 * mu * mu) / 8.0
     return {
@@ -195,7 +197,8 @@ def trim_aircraft(aircraft: dict, flight: FlightCondition, omega_scale: dict[str
     for rotor in aircraft["rotors"]:
         axis_b = np.asarray(rotor["thrust_axis_body"], dtype=float)
         axis_b = axis_b / np.linalg.norm(axis_b)
-        states.append(_RotorState(rotor, rotor["omega_rad_s"] * omega_scale.get(rotor["name"], 1.0), axis_b, frames.hub_to_body(axis_b)))
+        states.append(_RotorState(rotor, rotor["omega_rad_s"] * omega_scale.get(rotor["name"], 1.0), axis_b, frames.hub_to_body(axis_b),
+                                  RotorGeometry.from_config(rotor)))
     weight = aircraft["gross_weight_kg"] * G0_M_S2
     length = max(s.radius_m for s in states)
     moments = _layout_moments(aircraft)

@@ -25,7 +25,8 @@ import pandas as pd
 from nps.bet import _MAX_CONTROL_RAD
 from nps.broadband import peak_frequency_hz
 from nps.metrics import STUDY_BANDS
-from nps.rotor import Airfoil
+from nps.airfoils import LinearAirfoil
+from nps.rotor import RotorGeometry
 from nps.spectra import band_number_of
 from nps.wake import WakeModel
 
@@ -36,7 +37,7 @@ ADVANCE_RATIO_MAX = 0.5
 ADVANCE_RATIO_SOURCE = (f"linear inflow + first-harmonic rigid flapping, applied to conventional rotors up to mu ~ 0.5 "
                         f"({JOHNSON_1980}, ch. 5; {LEISHMAN_2006}, ch. 3-4)")
 TIP_MACH_SOURCE = ("subsonic sources of Farassat formulation 1A (Farassat, NASA/TM-2007-214853) and the "
-                   "Prandtl-Glauert section lift bounded at the airfoil's mach_cap (nps.rotor.Airfoil)")
+                   "Prandtl-Glauert section lift bounded at the airfoil's mach_cap (nps.airfoils.LinearAirfoil)")
 BLADE_LOADING_MAX = 0.14
 BLADE_LOADING_SOURCE = (f"thrust-limit (stall) boundary measured by McHugh (1978, AHS 34th Forum), C_T/sigma ~ 0.12-0.13 "
                         f"at its low-mu peak as reproduced in {LEISHMAN_2006}; NPS uses 0.14 at every mu")
@@ -145,13 +146,13 @@ def check_advance_ratio(mu: float, name: str, stage: str = "trim") -> Finding | 
 
 
 def check_tip_mach_hover(omega_rad_s: float, radius_m: float, speed_of_sound_mps: float, name: str,
-                         mach_cap: float = Airfoil.mach_cap, stage: str = "config") -> Finding | None:
+                         mach_cap: float = LinearAirfoil.mach_cap, stage: str = "config") -> Finding | None:
     """Hover tip Mach number ΩR/c ≤ the airfoil's ``mach_cap`` (checkable before the trim)."""
     return _above(f"rotor '{name}': hover tip Mach number", omega_rad_s * radius_m / speed_of_sound_mps, mach_cap,
                   TIP_MACH_SOURCE, stage)
 
 
-def check_tip_mach_advancing(tip_mach: float, mu: float, name: str, mach_cap: float = Airfoil.mach_cap,
+def check_tip_mach_advancing(tip_mach: float, mu: float, name: str, mach_cap: float = LinearAirfoil.mach_cap,
                              stage: str = "trim") -> Finding | None:
     """Advancing-tip Mach number M_tip (1 + μ) ≤ the airfoil's ``mach_cap``."""
     return _above(f"rotor '{name}': advancing tip Mach number", tip_mach * (1.0 + mu), mach_cap, TIP_MACH_SOURCE, stage)
@@ -289,11 +290,11 @@ def check_pegg_peak_frequency(thrust_N: float, tip_speed_mps: float, name: str, 
 # ---------------------------------------------------------------------------------------------
 
 def _solidity(rotor: Mapping) -> float:
-    return rotor["n_blades"] * rotor["chord_m"] / (math.pi * rotor["radius_m"])
+    return RotorGeometry.from_config(rotor).solidity
 
 
 def _foil(rotor: Mapping, key: str) -> float:
-    return float(rotor.get("airfoil", {}).get(key, getattr(Airfoil, key)))
+    return float(rotor.get("airfoil", {}).get(key, getattr(LinearAirfoil, key)))
 
 
 def _rotor_rows(aircraft: Mapping, trim: pd.DataFrame):
@@ -362,7 +363,7 @@ def blade_paths(aircraft: Mapping, trim: pd.DataFrame) -> list[BladePath]:
             hub_m=np.array([row["hub_x_m"], row["hub_y_m"], row["hub_z_m"]], dtype=float),
             velocity_mps=np.array([row["vel_x_mps"], row["vel_y_mps"], row["vel_z_mps"]], dtype=float),
             r_gh=np.array([[row[f"r_gh_{i}{j}"] for j in range(3)] for i in range(3)], dtype=float),
-            radius_m=float(rotor["radius_m"]), root_cutout_m=float(rotor["root_cutout_m"]), chord_m=float(rotor["chord_m"]),
+            radius_m=float(rotor["radius_m"]), root_cutout_m=float(rotor["root_cutout_m"]), chord_m=RotorGeometry.from_config(rotor).chord_m,
         ))
     return paths
 

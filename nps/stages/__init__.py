@@ -22,7 +22,8 @@ from typing import Callable
 # the stages, in workflow order (``radiate``, for tabulated sources, is not in the study workflow);
 # stage X is ``nps.stages.X.run``
 STAGES = ("trim", "loads", "wake", "observers", "acoustics", "hsi", "metrics",
-          "rotor_figures", "hsi_figure", "study_maps", "rotor_maps", "bvi_hotspot", "summary", "radiate")
+          "rotor_figures", "hsi_figure", "study_maps", "rotor_maps", "bvi_hotspot", "summary",
+          "source_hemisphere", "footprint", "certification", "radiate")
 
 
 def stage_module(stage: str) -> str:

@@ -58,5 +58,6 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
                 "thickness": model.kind, "chord_fractions": list(model.chord_fractions), "hinge_offset_m": hinge,
                 "inputs": [str(disk_path), str(inputs["trim"]), str(inputs["observers"])]}
         write_table(table, rotor_path(outputs["signals"], name), stage="acoustics", metadata=meta)
-        report.append(f"rotor {name}:\n" + table.groupby("group", observed=True)["p_Pa"].agg(["min", "max", "std"]).to_string())
+        report += [f"rotor {name} {group}: p_Pa min {pressure[:, g].min():.6g}, max {pressure[:, g].max():.6g}, "
+                   f"std {pressure[:, g].std():.6g}" for g, group in enumerate((LOADING, THICKNESS))]
     return "\n".join(report)

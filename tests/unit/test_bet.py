@@ -17,7 +17,8 @@ from nps.bet import (
     section_forces,
     trim_rotor,
 )
-from nps.rotor import Airfoil, OperatingPoint, RotorGeometry
+from nps.airfoils import LinearAirfoil
+from nps.rotor import OperatingPoint, RotorGeometry
 
 R = 7.62
 GEOM = RotorGeometry(name="main", n_blades=4, radius_m=R, chord_m=0.58, root_cutout_m=0.15 * R,
@@ -96,7 +97,7 @@ def test_symmetric_section_is_odd_in_pitch_and_inflow(speed, reverse, up, theta,
 
 def test_small_angle_limit_is_thesis_eq_4_1():
     """Without drag and tip loss, F_z → ½ρca(θU_T² − U_P U_T) (eq. 4.1) as angles → 0 (rel 1e-4)."""
-    foil = Airfoil(cd0=0.0, cd2=0.0, cl_max=10.0)
+    foil = LinearAirfoil(cd0=0.0, cd2=0.0, cl_max=10.0)
     g = RotorGeometry(**{**GEOM.__dict__, "airfoil": foil})
     ut, up, theta = 150.0, 0.3, 0.01
     f = section_forces(ut, up, theta, 5.0, g, 1.225, 1e9, tip_loss=False)

@@ -16,7 +16,8 @@ from pathlib import Path
 import numpy as np
 
 from nps import bet, bvi, wake
-from nps.rotor import Airfoil, OperatingPoint, RotorGeometry
+from nps.airfoils import LinearAirfoil
+from nps.rotor import OperatingPoint, RotorGeometry
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "hart_ii"
 RADIUS_M, OMEGA, SPEED, SHAFT_RAD = 2.0, 109.12, 32.9, np.radians(4.3)
@@ -26,7 +27,7 @@ R_OVER_R = 0.87
 GEOMETRY = RotorGeometry(
     name="hart_ii", n_blades=4, radius_m=RADIUS_M, chord_m=CHORD, root_cutout_m=0.44,
     twist_rad=np.radians(-8.0), thickness_ratio=0.12, lock_number=8.0, hinge_offset_m=0.29,
-    rotation_sign=1, airfoil=Airfoil(lift_slope_per_rad=6.0, alpha0_rad=np.radians(-1.2)),
+    rotation_sign=1, airfoil=LinearAirfoil(lift_slope_per_rad=6.0, alpha0_rad=np.radians(-1.2)),
 )
 MU_X = SPEED * np.cos(SHAFT_RAD) / (OMEGA * RADIUS_M)
 MU_Z = -SPEED * np.sin(SHAFT_RAD) / (OMEGA * RADIUS_M)

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from nps.bet import Controls, DiskGrid, rotor_loads, trim_rotor
-from nps.rotor import Airfoil, OperatingPoint, RotorGeometry
+from nps.airfoils import LinearAirfoil
+from nps.rotor import OperatingPoint, RotorGeometry
 
 R, OMEGA, RHO = 7.62, 28.0, 1.225
 
@@ -19,7 +20,7 @@ def test_hover_thrust_matches_closed_form_and_momentum_inflow():
     O(θφ²/(θ − φ)), ~5e-4 here), so the case uses θ0 ≈ 2°; 200 radial stations keep the
     midpoint-rule error (≈ h²/4 = 2e-5) below it. In hover the linear inflow is uniform
     (χ = 0) and flapping has no effect (β̇ = U_R = 0)."""
-    foil = Airfoil(cd0=0.0, cd2=0.0, cl_max=10.0)
+    foil = LinearAirfoil(cd0=0.0, cd2=0.0, cl_max=10.0)
     g = RotorGeometry(name="ideal", n_blades=4, radius_m=R, chord_m=0.58, root_cutout_m=0.0, twist_rad=0.0,
                       thickness_ratio=0.09, lock_number=8.0, airfoil=foil)
     k = g.solidity * foil.lift_slope_per_rad / 2.0

@@ -140,6 +140,34 @@ def summary_inputs(wildcards):
     return inputs
 
 
+# used by footprint.smk and certification.smk
+def source_set():
+    return config["footprint"]["source_set"]
+
+
+def product_variant(segment):
+    """The load variant of the product: with BVI wherever it is computed (as the summary)."""
+    return CAMPAIGN.variants(segment)[-1]
+
+
+def source_hemisphere_inputs(wildcards):
+    variant = product_variant(wildcards.segment)
+    base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
+    inputs = {"signals": f"{base}/acoustics/{source_set()}_{variant}", "trim": f"{base}/trim.parquet",
+              "observers": f"{base}/observers/{source_set()}.parquet"}
+    if wildcards.segment in CAMPAIGN.hsi_segments():
+        inputs["hsi"] = f"{base}/hsi/{source_set()}_{variant}"
+    return inputs
+
+
+def profile_segments():
+    return list(dict.fromkeys(leg["segment"] for leg in CAMPAIGN.mission.get("profile", [])))
+
+
+def footprint_inputs(wildcards):
+    return {f"hemisphere_{s}": f"{RESULTS}/{wildcards.aircraft}/{s}/source_hemisphere.parquet" for s in profile_segments()}
+
+
 # ---- resources: mem_mb of the jobs whose arrays scale with the resolution (nps.resources) ----
 def job_mem_mb(stage):
     """``resources: mem_mb`` of a ``stage`` job (loads, wake, acoustics, hsi, metrics): the estimate of
