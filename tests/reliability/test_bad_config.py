@@ -95,14 +95,14 @@ def _dry_run(tmp_path: Path, config_text: str) -> subprocess.CompletedProcess:
 
 
 @pytest.mark.parametrize("name, text, expect", [
-    ("yaml_syntax", (REPO / "config/config.yaml").read_text().replace("n_azimuth: 36", "n_azimuth: [36"),
+    ("yaml_syntax", (REPO / "config/config.yaml").read_text().replace("n_azimuth: 36", "n_azimuth: [36", 1),
      ("config/config.yaml: line ", "not valid YAML")),
     ("empty_segments", yaml.safe_dump({**BUNDLED, "campaign": {**BUNDLED["campaign"], "segments": []}}),
      ("config/config.yaml: campaign.segments:",)),
     ("observer_set_typo", yaml.safe_dump({**BUNDLED, "observer_sets": {
         **BUNDLED["observer_sets"], "hemisphere": {**BUNDLED["observer_sets"]["hemisphere"], "n_azimut": 72}}}),
      ("observer_sets.hemisphere.n_azimut",)),
-])
+], ids=["yaml_syntax", "empty_segments", "observer_set_typo"])
 def test_workflow_stops_before_the_first_job(tmp_path, name, text, expect):
     result = _dry_run(tmp_path, text)
     errors = [line for line in result.stderr.splitlines() if line.startswith("NPS configuration error")]
