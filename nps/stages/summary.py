@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from nps.io import read_metadata, read_table, rotor_path, write_table
+from nps.io import check_provenance, read_metadata, read_table, rotor_path, write_table
 from nps.study import STAGES, segment_summary
 
 
@@ -39,6 +39,20 @@ def validity_warnings(paths) -> str:
     return " | ".join(messages)
 
 
+def segment_artifacts(inputs: dict, params: dict, segment: str) -> dict:
+    """Artifacts of one segment the summary reads or lists the warnings of (trim, loads summaries,
+    wake tables where computed, metrics of each variant) → the provenance each must have."""
+    same = {"aircraft": params["aircraft"], "segment": segment}
+    artifacts = {inputs[f"trim_{segment}"]: {"stage": "trim", **same}}
+    artifacts.update({rotor_path(inputs[f"loads_{segment}"], r, "_summary"): {"stage": "loads", "rotor": r, **same}
+                      for r in params["rotors"]})
+    if f"wake_{segment}" in inputs:
+        artifacts.update({rotor_path(inputs[f"wake_{segment}"], r): {"stage": "wake", "rotor": r, **same} for r in params["rotors"]})
+    artifacts.update({inputs[f"metrics_{segment}_{v}"]: {"stage": "metrics", "variant": v, "obsset": "hemisphere", **same}
+                      for v in params["variants"][segment]})
+    return artifacts
+
+
 def run(inputs: dict, outputs: dict, params: dict) -> str:
     """One summary row per segment: levels and hotspots, trim state, wall time per stage.
 
@@ -51,13 +65,12 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     aircraft = params["aircraft"]
     rows = []
     for segment in params["segments"]:
+        recorded = segment_artifacts(inputs, params, segment)
+        for path, expected in recorded.items():
+            check_provenance(path, expected)
         trim = read_table(inputs[f"trim_{segment}"])
         loads = {r: read_table(rotor_path(inputs[f"loads_{segment}"], r, "_summary")) for r in params["rotors"]}
         metrics = {v: read_table(inputs[f"metrics_{segment}_{v}"]) for v in params["variants"][segment]}
-        recorded = [inputs[f"trim_{segment}"], *(rotor_path(inputs[f"loads_{segment}"], r, "_summary") for r in params["rotors"])]
-        if f"wake_{segment}" in inputs:
-            recorded += [rotor_path(inputs[f"wake_{segment}"], r) for r in params["rotors"]]
-        recorded += [inputs[f"metrics_{segment}_{v}"] for v in params["variants"][segment]]
         rows.append({**segment_summary(aircraft, segment, trim, loads, metrics,
                                        stage_wall_times(params["benchmarks"], aircraft, segment)),
                      "validity_warnings": validity_warnings(recorded)})
