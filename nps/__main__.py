@@ -26,13 +26,20 @@ def stages() -> list[str]:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run ``python -m nps <stage> [options]``; returns the exit status (option errors: 2, one line)."""
     argv = list(sys.argv[1:] if argv is None else argv)
     available = stages()
-    if not argv or argv[0] in ("-h", "--help") or argv[0] not in available:
+    if not argv or argv[0] in ("-h", "--help"):
         print("usage: python -m nps <stage> [options]\nstages: " + ", ".join(available), file=sys.stderr)
-        return 0 if argv and argv[0] in ("-h", "--help") else 2
+        return 0 if argv else 2
+    if argv[0] not in available:
+        print(f"error: unknown stage '{argv[0]}'; stages: {', '.join(available)}", file=sys.stderr)
+        return 2
     module = importlib.import_module(f"nps.cli.{argv[0]}")
-    return int(module.main(argv[1:]) or 0)
+    try:
+        return int(module.main(argv[1:]) or 0)
+    except SystemExit as stop:  # the option parser's --help (0) and usage errors (2)
+        return stop.code if isinstance(stop.code, int) else 2
 
 
 if __name__ == "__main__":

@@ -7,6 +7,8 @@ before any computation as a :class:`ConfigError` whose lines read
 
 from __future__ import annotations
 
+import difflib
+import functools
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -33,17 +35,28 @@ def _field_path(parts) -> str:
     return text or "<top level>"
 
 
+# name patterns of the schemas, in words: names become file names and workflow wildcards
+PATTERN_WORDS = {
+    "^[a-z][a-z0-9_]*$": "a lower-case letter followed by lower-case letters, digits or '_' (the name becomes "
+                         "part of file names and of the workflow's wildcards)",
+    "^seg[0-9]+$": "'seg' followed by digits, e.g. seg3 (the id becomes a directory name and a workflow wildcard)",
+}
+
+
 def _describe(error: jsonschema.ValidationError) -> tuple[str, str]:
     """(field path, expectation) for one schema error, in plain words."""
     path = list(error.absolute_path)
     kind = error.validator
     value = error.validator_value
+    if "propertyNames" in error.absolute_schema_path:  # a key of the mapping at ``path`` is refused
+        if kind == "enum":
+            return _field_path(path + [error.instance]), _unknown_key(error.instance, value)
+        if kind == "pattern":
+            return _field_path(path + [error.instance]), f"expected a name made of {PATTERN_WORDS.get(value, repr(value))}"
     if kind == "additionalProperties":
         allowed = sorted(error.schema.get("properties", {}))
         extra = sorted(set(error.instance) - set(allowed))
-        return _field_path(path + [extra[0]] if extra else path), (
-            f"unknown key (typo?); allowed keys here: {', '.join(allowed)}"
-        )
+        return _field_path(path + [extra[0]] if extra else path), _unknown_key(extra[0] if extra else "", allowed)
     if kind == "required":
         missing = [name for name in value if name not in error.instance]
         return _field_path(path + missing[:1]), "required field is missing"
@@ -55,10 +68,30 @@ def _describe(error: jsonschema.ValidationError) -> tuple[str, str]:
     if kind == "enum":
         return _field_path(path), f"expected one of {value}, got {error.instance!r}"
     if kind == "pattern":
-        return _field_path(path), f"expected text matching {value!r}, got {error.instance!r}"
+        return _field_path(path), f"expected {PATTERN_WORDS.get(value, f'text matching {value!r}')}, got {error.instance!r}"
     if kind in ("minItems", "maxItems"):
         return _field_path(path), f"expected a list with {kind[:3]}imum {value} item(s), got {len(error.instance)}"
     return _field_path(path), error.message
+
+
+def _unknown_key(key: str, allowed) -> str:
+    """Expectation text for an unknown key, with the closest allowed key when it looks like a typo."""
+    close = difflib.get_close_matches(str(key), [str(a) for a in allowed], n=1, cutoff=0.75)
+    hint = f"did you mean '{close[0]}'? " if close else "typo? "
+    return f"unknown key ({hint}allowed keys here: {', '.join(allowed)})"
+
+
+def _schema_problems(validator: jsonschema.protocols.Validator, data: Any) -> list[tuple[str, str]]:
+    """(field, expectation) of every schema error; a required key missing because of a typo is named
+    once, by the unknown key that suggests it (``n_azimut``: did you mean 'n_azimuth'?)."""
+    problems = [_describe(error) for error in validator.iter_errors(data)]
+    typos = set()
+    for field, what in problems:
+        if what.startswith("unknown key (did you mean '"):
+            parent = field.rsplit(".", 1)[0] if "." in field else ""
+            suggestion = what.split("'")[1]
+            typos.add(f"{parent}.{suggestion}" if parent else suggestion)
+    return [(field, what) for field, what in problems if not (what == "required field is missing" and field in typos)]
 
 
 def _non_finite(node: Any, path: list) -> Iterator[tuple[str, str]]:
@@ -75,11 +108,12 @@ def _non_finite(node: Any, path: list) -> Iterator[tuple[str, str]]:
 def _raise(file: str | Path, problems: list[tuple[str, str]]) -> None:
     if problems:
         lines = [f"{file}: {field}: {what}" for field, what in sorted(set(problems))]
-        raise ConfigError("invalid configuration\n  " + "\n  ".join(lines))
+        raise ConfigError(lines[0] if len(lines) == 1 else f"{len(lines)} problems:\n  " + "\n  ".join(lines))
 
 
+@functools.lru_cache(maxsize=None)
 def load_schema(name: str) -> dict:
-    """The schema ``nps/schemas/<name>.schema.yaml``."""
+    """The schema ``nps/schemas/<name>.schema.yaml`` (parsed once per process; callers must not modify it)."""
     with open(SCHEMA_DIR / f"{name}.schema.yaml") as handle:
         return yaml.safe_load(handle)
 
@@ -97,13 +131,37 @@ def schema_default(schema_name: str, field: str) -> Any:
     return node["default"]
 
 
+def field_problem(schema_name: str, field: str, value: Any) -> str | None:
+    """What is wrong with ``value`` for the dotted schema field (e.g. ``atmosphere.isa_delta_K``), or None."""
+    node = load_schema(schema_name)
+    for part in field.split("."):
+        node = node["properties"][part]
+    problems = [what for _, what in _non_finite(value, [])]
+    problems += [what for _, what in _schema_problems(jsonschema.Draft202012Validator(node), value)]
+    return problems[0] if problems else ordering_problem(field, value)
+
+
+# two-element fields whose elements the code needs strictly increasing (not expressible in the schema)
+ORDERED_PAIRS = {
+    "acoustics.bvispl_harmonics": "[first, last] harmonics with first < last",
+    "acoustics.dual_compact_chord_fractions": "[front, rear] with front < rear (two distinct source lines)",
+}
+
+
+def ordering_problem(field: str, value: Any) -> str | None:
+    """The ordering a field of :data:`ORDERED_PAIRS` needs, when ``value`` (schema-valid) violates it."""
+    if field in ORDERED_PAIRS and not value[0] < value[1]:
+        return f"expected {ORDERED_PAIRS[field]}, got {list(value)}"
+    return None
+
+
 def validate(data: Any, schema_name: str, file: str | Path) -> dict:
     """Validate ``data`` against a schema; raise :class:`ConfigError` listing every problem."""
     if not isinstance(data, dict):
         _raise(file, [("<top level>", f"expected a mapping, got {type(data).__name__}")])
     problems = list(_non_finite(data, []))
     validator = jsonschema.Draft202012Validator(load_schema(schema_name))
-    problems += [_describe(error) for error in validator.iter_errors(data)]
+    problems += _schema_problems(validator, data)
     _raise(file, problems)
     return data
 
@@ -117,7 +175,18 @@ def read_yaml(path: str | Path) -> Any:
         with open(path) as handle:
             return yaml.safe_load(handle)
     except yaml.YAMLError as exc:
-        raise ConfigError(f"{path}: not valid YAML: {exc}") from exc
+        raise ConfigError(f"{path}: {yaml_error_text(exc)}") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{path}: cannot be read ({exc.__class__.__name__}: {exc})") from None
+
+
+def yaml_error_text(exc: yaml.YAMLError) -> str:
+    """One line for a YAML syntax error: ``line L, column C: not valid YAML: <problem> (<context>)``."""
+    mark = getattr(exc, "problem_mark", None)
+    where = f"line {mark.line + 1}, column {mark.column + 1}: " if mark is not None else ""
+    problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
+    context = getattr(exc, "context", None)
+    return f"{where}not valid YAML: {problem}" + (f" ({context})" if context else "")
 
 
 def load_aircraft(path: str | Path) -> dict:
@@ -135,7 +204,12 @@ def load_aircraft(path: str | Path) -> dict:
             problems.append((f"{where}.hinge_offset_m", f"expected < radius_m ({rotor['radius_m']})"))
         if math.hypot(*rotor["thrust_axis_body"]) < 1e-9:
             problems.append((f"{where}.thrust_axis_body", "expected a non-zero vector"))
+        elif rotor["role"] == "lift" and rotor["thrust_axis_body"][2] <= 0.0:
+            problems.append((f"{where}.thrust_axis_body", "expected a lift rotor's thrust axis pointing up (z > 0 in the body "
+                                                          f"frame: x forward, y port, z up), got {rotor['thrust_axis_body']}"))
         problems += _rotor_sections(rotor, where, Path(path).parent)
+    if not problems:  # the rotors' geometry (blade tables resolved) is readable
+        problems += _hub_problems(data["rotors"])
     if not any(rotor["role"] == "lift" for rotor in data["rotors"]):
         problems.append(("rotors", "expected at least one rotor with role 'lift'"))
     if sum(rotor["role"] == "antitorque" for rotor in data["rotors"]) > 1:
@@ -144,6 +218,67 @@ def load_aircraft(path: str | Path) -> dict:
         problems.append(("name", f"expected the file stem '{Path(path).stem}', got '{data['name']}'"))
     _raise(path, problems)
     return data
+
+
+def _hub_problems(rotors: list[dict]) -> list[tuple[str, str]]:
+    """Rotors whose hub lies inside the disk another rotor's blades sweep: in that rotor's hub plane
+    (within one of its chords along its thrust axis) and inside its radius."""
+    from nps.rotor import RotorGeometry  # reference chord of linear blades and blade tables alike
+
+    chords = [RotorGeometry.from_config(rotor).chord_m for rotor in rotors]
+    problems, pairs = [], set()
+    for i, other in enumerate(rotors):
+        axis = [c / math.hypot(*other["thrust_axis_body"]) for c in other["thrust_axis_body"]] \
+            if math.hypot(*other["thrust_axis_body"]) > 1e-9 else [0.0, 0.0, 1.0]
+        for j, rotor in enumerate(rotors):
+            if i == j or frozenset((i, j)) in pairs:
+                continue
+            d = [a - b for a, b in zip(rotor["hub_position_m"], other["hub_position_m"])]
+            axial = sum(a * b for a, b in zip(d, axis))
+            in_plane = math.sqrt(max(0.0, sum(a * a for a in d) - axial * axial))
+            if abs(axial) < chords[i] and in_plane < other["radius_m"]:
+                pairs.add(frozenset((i, j)))
+                problems.append((f"rotors[{j}].hub_position_m", (
+                    f"hub {rotor['hub_position_m']} lies inside the disk swept by rotor '{other['name']}' "
+                    f"({in_plane:.3g} m from its hub in its plane, radius {other['radius_m']} m; {abs(axial):.3g} m along its axis, "
+                    f"chord {chords[i]:.3g} m): expected the hub outside the other rotors' blade paths")))
+    return problems
+
+
+def campaign_value_problems(config: dict) -> list[tuple[str, str]]:
+    """Ordering constraints of the campaign config the code relies on (not expressible in the schema)."""
+    problems = []
+    for field in ORDERED_PAIRS:
+        section, key = field.split(".")
+        problem = ordering_problem(field, config[section][key])
+        if problem:
+            problems.append((field, problem))
+    return problems + observer_set_problems(config["observer_sets"])
+
+
+def observer_set_problems(sets: dict) -> list[tuple[str, str]]:
+    """Ordering constraints of schema-valid ``observer_sets`` (ground-grid ranges increasing)."""
+    problems = []
+    for name, spec in sets.items():
+        for key in ("x_range_m", "y_range_m"):
+            if isinstance(spec, dict) and key in spec and not spec[key][0] < spec[key][1]:
+                problems.append((f"observer_sets.{name}.{key}", f"expected [low, high] with low < high, got {spec[key]}"))
+    return problems
+
+
+def load_observer_sets(path: str | Path) -> dict:
+    """The validated ``observer_sets`` of a campaign config file (for ``python -m nps observers``)."""
+    data = read_yaml(path)
+    if not isinstance(data, dict) or "observer_sets" not in data:
+        raise ConfigError(f"{path}: observer_sets: required field is missing (an observer-set mapping)")
+    node = load_schema("config")["properties"]["observer_sets"]
+    schema = {"type": "object", "properties": {"observer_sets": node}}
+    sets = {"observer_sets": data["observer_sets"]}
+    problems = list(_non_finite(sets, []))
+    problems += _schema_problems(jsonschema.Draft202012Validator(schema), sets)
+    _raise(path, problems)
+    _raise(path, observer_set_problems(data["observer_sets"]))
+    return data["observer_sets"]
 
 
 def _rotor_sections(rotor: dict, where: str, base: Path) -> list[tuple[str, str]]:
@@ -324,6 +459,7 @@ def _footprint_problems(config: dict, mission: dict, all_ids: list[str]) -> list
 def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", root: str | Path = ".") -> Campaign:
     """Validate the campaign configuration and every file it names, with cross references."""
     validate(config, "config", config_file)
+    _raise(config_file, campaign_value_problems(config))
     root = Path(root)
     config_dir = root / config["campaign"].get("config_dir", "config")
     problems = []

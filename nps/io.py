@@ -95,6 +95,8 @@ def write_table(
     Returns the path written.
     """
     path = Path(path)
+    if path.is_dir():
+        raise ArtifactError(f"{path}: is a directory; expected the path of the {stage} Parquet file")
     check_finite(df, f"{path} ({stage})")
     if schema is None:
         schema = pa.schema([pa.field(str(c), _arrow_type(df[c])) for c in df.columns])
@@ -159,21 +161,63 @@ def _json_default(value):
     raise TypeError(f"cannot store {type(value).__name__} in artifact metadata")
 
 
-def read_table(path: str | os.PathLike, required: tuple[str, ...] = ()) -> pd.DataFrame:
-    """Read an artifact; raise :class:`ArtifactError` naming missing ``required`` columns."""
+def read_table(path: str | os.PathLike, required: tuple[str, ...] = (), nonempty: bool = False,
+               finite: bool = False) -> pd.DataFrame:
+    """Read an artifact; raise :class:`ArtifactError` naming missing ``required`` columns, a table
+    without rows (``nonempty``) or NaN/inf in a float column (``finite``: inputs from other tools)."""
     path = Path(path)
-    if not path.exists():
-        raise ArtifactError(f"{path}: artifact not found")
-    df = pq.read_table(path).to_pandas()
+    if not path.is_file():
+        raise ArtifactError(f"{path}: artifact not found" if not path.exists() else f"{path}: expected a Parquet file")
+    try:
+        df = pq.read_table(path).to_pandas()
+    except (pa.ArrowException, OSError) as exc:
+        raise ArtifactError(f"{path}: not a readable Parquet file ({str(exc).splitlines()[0]})") from None
     missing = [c for c in required if c not in df.columns]
     if missing:
         raise ArtifactError(f"{path}: missing column(s) {missing}; has {list(df.columns)}")
+    if nonempty and len(df) == 0:
+        raise ArtifactError(f"{path}: the table has no rows")
+    if finite:
+        check_finite(df, str(path))
     return df
+
+
+def artifact_rows(path: str | os.PathLike) -> int:
+    """Row count of an artifact from its Parquet footer (nothing else is read), for memory estimates."""
+    read_metadata(path)  # names a missing or unreadable file
+    return int(pq.read_metadata(path).num_rows)
+
+
+def check_provenance(path: str | os.PathLike, expected: Mapping[str, object]) -> dict[str, object]:
+    """Refuse an input artifact made for something else; returns its ``nps.*`` metadata.
+
+    ``expected``: metadata key → the value the reading stage works on (``aircraft``, ``segment``,
+    ``rotor``, ``obsset``, ``variant``; ``stage``: a name or a tuple of accepted names). Keys whose
+    expected value is ``None`` or ``""``, and keys the artifact does not record (tables from other
+    tools), are not checked. One :class:`ArtifactError` lists every mismatch.
+    """
+    meta = read_metadata(path)
+    problems = []
+    for key, want in expected.items():
+        if want is None or want == "" or key not in meta:
+            continue
+        accepted = tuple(str(w) for w in want) if isinstance(want, (tuple, list)) else (str(want),)
+        if str(meta[key]) not in accepted:
+            problems.append(f"{key} '{meta[key]}' (expected {' or '.join(repr(a) for a in accepted)})")
+    if problems:
+        raise ArtifactError(f"{path}: input made for {', '.join(problems)} according to its provenance metadata; "
+                            f"pass the artifact of the same {', '.join(p.split(' ', 1)[0] for p in problems)}")
+    return meta
 
 
 def read_metadata(path: str | os.PathLike) -> dict[str, object]:
     """The ``nps.*`` metadata of an artifact, JSON-decoded where possible."""
-    raw = pq.read_schema(path).metadata or {}
+    if not Path(path).is_file():
+        raise ArtifactError(f"{path}: artifact not found")
+    try:
+        raw = pq.read_schema(path).metadata or {}
+    except (pa.ArrowException, OSError) as exc:
+        raise ArtifactError(f"{path}: not a readable Parquet file ({str(exc).splitlines()[0]})") from None
     out: dict[str, object] = {}
     for key, value in raw.items():
         name = key.decode()
@@ -194,4 +238,4 @@ def rotor_path(directory: str | os.PathLike, rotor: str, suffix: str = "") -> Pa
 
 def read_signals(directory: str | os.PathLike, rotors) -> dict[str, pd.DataFrame]:
     """Rotor name → signal table (columns :data:`SIGNAL_COLUMNS`) of every rotor in a signals directory."""
-    return {r: read_table(rotor_path(directory, r), required=SIGNAL_COLUMNS) for r in rotors}
+    return {r: read_table(rotor_path(directory, r), required=SIGNAL_COLUMNS, nonempty=True, finite=True) for r in rotors}

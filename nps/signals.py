@@ -36,6 +36,17 @@ def signals_table(ids: np.ndarray, groups, pressure: np.ndarray, grid, total: bo
     })
 
 
+def check_observers(table: pd.DataFrame, observer_ids, what: str, observers_what: str) -> None:
+    """Refuse a signal table whose observers are not exactly those of the observer table (ids
+    ``observer_ids`` read from ``observers_what``): a missing observer would vanish from the results."""
+    have, want = np.unique(table["observer"].to_numpy()), np.unique(np.asarray(observer_ids))
+    missing, extra = np.setdiff1d(want, have), np.setdiff1d(have, want)
+    if missing.size or extra.size:
+        parts = [f"observer(s) {missing[:5].tolist()}{' ...' if missing.size > 5 else ''} of {observers_what} missing"] * bool(missing.size)
+        parts += [f"observer(s) {extra[:5].tolist()}{' ...' if extra.size > 5 else ''} not in {observers_what}"] * bool(extra.size)
+        raise ValueError(f"{what}: {'; '.join(parts)} ({have.size} observers, expected {want.size})")
+
+
 def signal_arrays(table: pd.DataFrame, groups=None, what: str = "pressure signals"
                   ) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
     """Signal artifact → (observer ids (sorted, int32), time_s (N,), group → p_Pa (n_obs, N)).

@@ -220,10 +220,20 @@ def trim_aircraft(aircraft: dict, flight: FlightCondition, omega_scale: dict[str
     else:
         raise AircraftTrimError(
             f"aircraft '{aircraft['name']}' did not trim at V_h={flight.forward_speed_mps} m/s, "
-            f"V_c={flight.climb_speed_mps} m/s: residuals {residual} (forces/W, moments/(W R))"
+            f"V_c={flight.climb_speed_mps} m/s: residuals {residual} (forces/W, moments/(W R)); inputs to check: "
+            f"gross_weight_kg, fuselage_drag_area_m2, the rotors' hub_position_m and thrust_axis_body (force and "
+            f"moment balance), and the segment's speeds"
         )
-    if np.any(x[2:] <= 0.0):
-        raise AircraftTrimError(f"aircraft '{aircraft['name']}' trims with a non-positive rotor thrust {x[2:]}")
+    negative = [(s.rotor, float(t)) for s, t in zip(states, x[2:]) if t <= 0.0]
+    if negative:
+        rotor, thrust = negative[0]
+        balance = ("the lift rotors' torque: check its thrust_axis_body against the lift rotors' rotation (or a descent "
+                   "steep enough to drive the lift rotors, autorotation, which NPS does not model)"
+                   if rotor["role"] == "antitorque" else "weight, drag and moments: check its thrust_axis_body and "
+                   "hub_position_m against the other rotors', gross_weight_kg, fuselage_drag_area_m2 and the segment's speeds")
+        raise AircraftTrimError(
+            f"aircraft '{aircraft['name']}': rotor '{rotor['name']}' ({rotor['role']}) would need a thrust of {thrust:.4g} N "
+            f"along its thrust_axis_body {rotor['thrust_axis_body']} to balance {balance}")
     pitch, roll = float(x[0]), float(x[1])
     r_gb = frames.body_to_ground(pitch, roll)
     rows = []

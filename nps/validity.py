@@ -109,6 +109,19 @@ def enforce(findings: Iterable[Finding | None], allow_outside_validity: bool, wh
     return [f.as_dict() for f in found]
 
 
+def recorded(findings: Iterable[Finding | None], params: Mapping, where: str) -> dict:
+    """A stage's validity metadata: :func:`enforce` with the switch ``params["allow_outside_validity"]``
+    (default false); ``{"validity_warnings": [...]}`` when findings were allowed, ``{}`` when there are
+    none (so an artifact inside the envelope carries no extra key)."""
+    warnings = enforce(findings, bool(params.get("allow_outside_validity", False)), where)
+    return {"validity_warnings": warnings} if warnings else {}
+
+
+def report(metadata: Mapping) -> str:
+    """Lines ``warning: <finding>`` of the ``validity_warnings`` in a stage's metadata, for its log."""
+    return "".join(f"\nwarning: {w['message']}" for w in metadata.get("validity_warnings", []))
+
+
 def _above(quantity: str, value: float, limit: float, source: str, stage: str) -> Finding | None:
     """Finding when ``value`` > ``limit`` (or is not finite)."""
     if math.isfinite(value) and value <= limit:
@@ -287,7 +300,8 @@ def _foil(rotor: Mapping, key: str) -> float:
 def _rotor_rows(aircraft: Mapping, trim: pd.DataFrame):
     rotors = {r["name"]: r for r in aircraft["rotors"]}
     for _, row in trim.iterrows():
-        yield rotors[row["rotor"]], row
+        if row["rotor"] in rotors:
+            yield rotors[row["rotor"]], row
 
 
 def aircraft_findings(aircraft: Mapping, speed_of_sound_mps: float,

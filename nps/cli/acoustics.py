@@ -8,7 +8,7 @@ aircraft's common grid (one revolution of the first rotor) into ``--out-dir``.
 
 from __future__ import annotations
 
-from nps.cli import default, fail, parser, provenance, run_stage
+from nps.cli import default, fail, option_problem, parser, provenance, run_stage
 from nps.config import ConfigError, aircraft_rotor, load_aircraft
 
 
@@ -24,9 +24,15 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--thickness", default=default("models.thickness"), help="dual_compact or compact_monopole")
     ap.add_argument("--chord-fractions", type=float, nargs=2, default=default("acoustics.dual_compact_chord_fractions"),
                     metavar=("FRONT", "REAR"), help="dual-compact line positions from the leading edge (fractions of chord)")
-    ap.add_argument("--variant", default="base", help="load variant named in the metadata (base or bvi)")
+    ap.add_argument("--variant", choices=("base", "bvi"),
+                    help="load variant: base (trimmed loads) or bvi (default: from the disk tables' provenance)")
     ap.add_argument("--out-dir", required=True, help="output directory of the per-rotor signal tables")
     args = ap.parse_args(argv)
+    problem = option_problem({"--samples-per-rev": ("resolution.samples_per_rev", args.samples_per_rev),
+                              "--thickness": ("models.thickness", args.thickness),
+                              "--chord-fractions": ("acoustics.dual_compact_chord_fractions", args.chord_fractions)})
+    if problem:
+        return fail(problem)
     try:
         aircraft = load_aircraft(args.aircraft)
         names = args.rotor or [r["name"] for r in aircraft["rotors"]]
@@ -36,6 +42,6 @@ def main(argv: list[str]) -> int:
     params = {"rotors": names, "hinge_offsets_m": hinges, "thickness": args.thickness, "chord_fractions": args.chord_fractions,
               "samples_per_rev": args.samples_per_rev, "aircraft": aircraft["name"],
               "segment": provenance(args.trim, "segment"), "obsset": provenance(args.observers, "obsset"),
-              "variant": args.variant}
+              "variant": args.variant or ("bvi" if provenance(f"{args.disks}/{names[0]}.parquet", "stage") == "bvi" else "base")}
     inputs = {"disks": args.disks, "trim": args.trim, "observers": args.observers}
     return run_stage("acoustics", inputs, {"signals": args.out_dir}, params, args.debug)

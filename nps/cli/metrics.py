@@ -10,13 +10,13 @@ or none.
 
 from __future__ import annotations
 
-from nps.cli import default, fail, parser, provenance, run_stage
+from nps.cli import default, fail, option_problem, parser, provenance, run_stage
 from nps.config import BROADBAND_MODELS, ConfigError, load_aircraft
 from nps.metrics import rotor_solidities
 
 
 def main(argv: list[str]) -> int:
-    ap = parser("metrics", __doc__)
+    ap = parser("metrics", __doc__, validity=True)
     ap.add_argument("--aircraft", required=True, help="aircraft YAML (rotor solidities)")
     ap.add_argument("--trim", required=True, help="trim.parquet")
     ap.add_argument("--observers", required=True, help="observers/{obsset}.parquet")
@@ -38,19 +38,26 @@ def main(argv: list[str]) -> int:
     args = ap.parse_args(argv)
     if args.broadband == "bpm" and not args.disks:
         return fail("--broadband bpm needs --disks (the loads or bvi directory of the rotors' disk tables)")
+    problem = option_problem({"--altitude-m": ("atmosphere.altitude_m", args.altitude_m),
+                              "--isa-delta-k": ("atmosphere.isa_delta_K", args.isa_delta_k),
+                              "--relative-humidity-pct": ("atmosphere.relative_humidity_pct", args.relative_humidity_pct),
+                              "--bvispl-harmonics": ("acoustics.bvispl_harmonics", args.bvispl_harmonics)})
+    if problem:
+        return fail(problem)
     try:
         aircraft = load_aircraft(args.aircraft)
     except ConfigError as error:
         return fail(str(error))
     atmosphere = {"altitude_m": args.altitude_m, "isa_delta_K": args.isa_delta_k,
                   "relative_humidity_pct": args.relative_humidity_pct}
-    params = {"rotors": args.rotor or [r["name"] for r in aircraft["rotors"]], "solidity": rotor_solidities(aircraft),
+    names = args.rotor or [r["name"] for r in aircraft["rotors"]]
+    params = {"rotors": names, "solidity": rotor_solidities(aircraft),
+              "rotor_configs": {r["name"]: r for r in aircraft["rotors"]},
               "atmosphere": atmosphere, "broadband": args.broadband, "absorption": not args.no_absorption,
               "harmonics": args.bvispl_harmonics, "aircraft": aircraft["name"], "segment": provenance(args.trim, "segment"),
-              "obsset": provenance(args.observers, "obsset"), "variant": "base"}
-    if args.broadband == "bpm":
-        params["rotor_configs"] = {r["name"]: r for r in aircraft["rotors"]}
+              "obsset": provenance(args.observers, "obsset"), "variant": provenance(f"{args.signals}/{names[0]}.parquet", "variant") or "base"}
     inputs = {"signals": args.signals, "trim": args.trim, "observers": args.observers, **({"hsi": args.hsi} if args.hsi else {}),
               **({"disks": args.disks} if args.disks else {})}
     outputs = {"metrics": args.out, "bands": args.bands_out, **({"figure": args.figure} if args.figure else {})}
-    return run_stage("metrics", inputs, outputs, params, args.debug)
+    return run_stage("metrics", inputs, outputs, params, args.debug,
+                     args.allow_outside_validity)

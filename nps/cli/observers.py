@@ -7,12 +7,12 @@ hub of the lift rotors and its radii are in first-rotor radii (nps.observers).
 from __future__ import annotations
 
 from nps.cli import fail, parser, provenance, run_stage
-from nps.config import ConfigError, load_aircraft, read_yaml
+from nps.config import ConfigError, load_aircraft, load_observer_sets
 from nps.observers import rotor_roles
 
 
 def main(argv: list[str]) -> int:
-    ap = parser("observers", __doc__)
+    ap = parser("observers", __doc__, validity=True)
     ap.add_argument("--config", required=True, help="campaign config (config/config.yaml) holding observer_sets")
     ap.add_argument("--set", required=True, help="observer set name in observer_sets")
     ap.add_argument("--aircraft", required=True, help="aircraft YAML (config/aircraft/NAME.yaml)")
@@ -20,12 +20,14 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--out", required=True, help="observer table Parquet (results/.../observers/SET.parquet)")
     args = ap.parse_args(argv)
     try:
-        sets = (read_yaml(args.config) or {}).get("observer_sets", {})
+        sets = load_observer_sets(args.config)
         if args.set not in sets:
             raise ConfigError(f"{args.config}: observer_sets: no set named '{args.set}'; sets: {list(sets)}")
         aircraft = load_aircraft(args.aircraft)
     except ConfigError as error:
         return fail(str(error))
     params = {"spec": sets[args.set], "rotor_roles": rotor_roles(aircraft), "reference_radius_m": aircraft["rotors"][0]["radius_m"],
+              "rotors": {r["name"]: r for r in aircraft["rotors"]},
               "aircraft": aircraft["name"], "segment": provenance(args.trim, "segment"), "obsset": args.set}
-    return run_stage("observers", {"trim": args.trim}, {"observers": args.out}, params, args.debug)
+    return run_stage("observers", {"trim": args.trim}, {"observers": args.out}, params, args.debug,
+                     args.allow_outside_validity)

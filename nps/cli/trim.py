@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-from nps.cli import default, fail, parser, run_stage
+from nps.cli import default, fail, option_problem, parser, run_stage
 from nps.config import ConfigError, load_aircraft, load_mission
 
 
 def main(argv: list[str]) -> int:
-    ap = parser("trim", __doc__)
+    ap = parser("trim", __doc__, validity=True)
     ap.add_argument("--aircraft", required=True, help="aircraft YAML (config/aircraft/NAME.yaml)")
     ap.add_argument("--mission", required=True, help="mission YAML (config/missions/NAME.yaml)")
     ap.add_argument("--segment", required=True, help="segment id, e.g. seg3")
@@ -16,6 +16,11 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--relative-humidity-pct", type=float, default=default("atmosphere.relative_humidity_pct"))
     ap.add_argument("--out", required=True, help="output Parquet (one row per rotor)")
     args = ap.parse_args(argv)
+    problem = option_problem({"--altitude-m": ("atmosphere.altitude_m", args.altitude_m),
+                              "--isa-delta-k": ("atmosphere.isa_delta_K", args.isa_delta_k),
+                              "--relative-humidity-pct": ("atmosphere.relative_humidity_pct", args.relative_humidity_pct)})
+    if problem:
+        return fail(problem)
     try:
         aircraft = load_aircraft(args.aircraft)
         mission = load_mission(args.mission)
@@ -30,4 +35,5 @@ def main(argv: list[str]) -> int:
                   "relative_humidity_pct": args.relative_humidity_pct}
     params = {"aircraft_config": aircraft, "speeds": segment["aircraft"][aircraft["name"]], "atmosphere": atmosphere,
               "segment": args.segment}
-    return run_stage("trim", {}, {"trim": args.out}, params, args.debug)
+    return run_stage("trim", {}, {"trim": args.out}, params, args.debug,
+                     args.allow_outside_validity)

@@ -7,12 +7,12 @@ writes the wake geometry (``{rotor}.parquet`` and a legacy-VTK series ``{rotor}_
 
 from __future__ import annotations
 
-from nps.cli import default, fail, parser, provenance, run_stage
+from nps.cli import default, fail, option_problem, parser, provenance, run_stage
 from nps.config import ConfigError, aircraft_rotor, load_aircraft
 
 
 def main(argv: list[str]) -> int:
-    ap = parser("wake", __doc__)
+    ap = parser("wake", __doc__, validity=True)
     ap.add_argument("--aircraft", required=True, help="aircraft YAML (config/aircraft/NAME.yaml)")
     ap.add_argument("--trim", required=True, help="aircraft trim artifact (results/.../trim.parquet)")
     ap.add_argument("--loads-dir", required=True, help="loads directory (results/.../loads)")
@@ -33,6 +33,14 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--step-deg", type=float, default=5.0, help="wake snapshot spacing over one blade passage (deg)")
     ap.add_argument("--quasi-steady", action="store_true", help="no Sears response (thesis lifting line)")
     args = ap.parse_args(argv)
+    problem = option_problem({**{f"--{k}": (f"wake.{k}", getattr(args, k)) for k in ("A", "B", "C", "D")},
+                              "--core-radius-chords": ("wake.core_radius_chords", args.core_radius_chords),
+                              "--revolutions": ("resolution.wake_revolutions", args.revolutions),
+                              "--steps-per-rev": ("resolution.n_psi", args.steps_per_rev)})
+    if problem:
+        return fail(problem)
+    if not 0.0 < args.step_deg <= 360.0:
+        return fail(f"--step-deg: expected a number in (0, 360], got {args.step_deg}")
     try:
         aircraft = load_aircraft(args.aircraft)
         names = args.rotor or [r["name"] for r in aircraft["rotors"]]
@@ -45,4 +53,5 @@ def main(argv: list[str]) -> int:
               "step_deg": args.step_deg, "unsteady": not args.quasi_steady, "aircraft": aircraft["name"],
               "segment": provenance(args.trim, "segment")}
     return run_stage("wake", {"trim": args.trim, "loads": args.loads_dir}, {"wake": args.wake_dir, "bvi": args.bvi_dir},
-                     params, args.debug)
+                     params, args.debug,
+                     args.allow_outside_validity)

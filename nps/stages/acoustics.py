@@ -8,31 +8,45 @@ grid: one revolution of the reference (first) rotor with ``samples_per_rev`` sam
 params: ``rotors`` (names, the first is the reference), ``hinge_offsets_m`` (rotor → hinge offset),
 ``thickness`` (``dual_compact`` or ``compact_monopole``), ``chord_fractions`` (dual-compact line
 positions), ``samples_per_rev``, ``aircraft``, ``segment``, ``obsset``, ``variant``.
+
+Before computing: provenance of every input (aircraft, segment, observer set, rotor; disk tables of
+the loads stage for variant ``base``, of the BVI stage for ``bvi``), non-empty tables, memory.
 """
 
 from __future__ import annotations
 
 from nps.acoustics import LOADING, THICKNESS, AcousticsError, Observers
-from nps.io import read_table, rotor_path, write_table
+from nps.io import check_provenance, read_table, rotor_path, write_table
+from nps.resources import check_memory, estimate_bytes
 from nps.signals import signals_table
 from nps.sources import DISK_COLUMNS, ThicknessModel, common_grid, radiate_rotor
 from nps.trim import TRIM_COLUMNS, trim_row
 
 OBSERVER_COLUMNS = ("observer", "x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps")
+DISK_STAGE = {"base": "loads", "bvi": "bvi"}  # variant -> stage that wrote its disk tables
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:
     rotors = list(params["rotors"])
     model = ThicknessModel(params["thickness"], tuple(float(f) for f in params["chord_fractions"]))
     samples = int(params["samples_per_rev"])
-    trim = read_table(inputs["trim"], required=TRIM_COLUMNS)
-    observers = read_table(inputs["observers"], required=OBSERVER_COLUMNS)
+    same = {"aircraft": params["aircraft"], "segment": params["segment"]}
+    check_provenance(inputs["trim"], {"stage": "trim", **same})
+    check_provenance(inputs["observers"], {"stage": "observers", "obsset": params["obsset"], **same})
+    for name in rotors:
+        check_provenance(rotor_path(inputs["disks"], name),
+                         {"stage": DISK_STAGE.get(params["variant"], tuple(DISK_STAGE.values())), "rotor": name, **same})
+    trim = read_table(inputs["trim"], required=TRIM_COLUMNS, nonempty=True)
+    observers = read_table(inputs["observers"], required=OBSERVER_COLUMNS, nonempty=True, finite=True)
     obs = Observers(observers[["x_m", "y_m", "z_m"]].to_numpy(float), observers[["vx_mps", "vy_mps", "vz_mps"]].to_numpy(float))
     grid = common_grid(trim_row(trim, rotors[0], str(inputs["trim"])), samples)
     report = []
     for name in rotors:
         disk_path = rotor_path(inputs["disks"], name)
-        disk = read_table(disk_path, required=DISK_COLUMNS)
+        disk = read_table(disk_path, required=DISK_COLUMNS, nonempty=True)
+        check_memory(estimate_bytes("acoustics", {"n_psi": disk["psi_rad"].nunique(), "n_r": disk["r_m"].nunique(),
+                                                  "samples_per_rev": samples}, len(observers), len(rotors)),
+                     f"{outputs['signals']}: {len(observers)} observers x {samples} samples per revolution")
         hinge = float(params["hinge_offsets_m"][name])
         try:
             pressure = radiate_rotor(disk, trim_row(trim, name, str(inputs["trim"])), obs, grid, thickness=model, hinge_offset_m=hinge)

@@ -8,7 +8,11 @@ outputs: ``hsi``, a directory with per rotor ``{rotor}.parquet`` (group ``hsi``,
 ``{rotor}_diagnostics.parquet`` (observer, mach_r, radiation_distance_m, amplification,
 shear_angle_rad, n_shocks). params: ``rotors``, ``obsset``, ``variant``; optional ``observer``
 (id whose intermediate signals are written as ``{rotor}_observer.parquet``: step, time_s, p_Pa; with
-the optional output ``figure``, they are drawn for the first rotor, thesis Fig. 6.3 kind).
+the optional output ``figure``, they are drawn for the first rotor, thesis Fig. 6.3 kind); ``aircraft``
+and ``segment`` when known (checked against the inputs' provenance).
+
+Before computing: provenance of every input, every observer of the observer table in every rotor's
+signals (and no other), the ``observer`` in the table, memory.
 """
 
 from __future__ import annotations
@@ -17,7 +21,9 @@ import numpy as np
 import pandas as pd
 
 from nps.hsi import OBSERVER_COLUMNS, HsiIntermediate, process
-from nps.io import read_signals, read_table, rotor_path, write_table
+from nps.io import artifact_rows, check_provenance, read_signals, read_table, rotor_path, write_table
+from nps.resources import check_memory, estimate_bytes
+from nps.signals import check_observers
 from nps.trim import TRIM_COLUMNS, trim_row
 
 
@@ -40,9 +46,23 @@ def intermediate_table(inter: HsiIntermediate) -> pd.DataFrame:
 def run(inputs: dict, outputs: dict, params: dict) -> str:
     rotors = list(params["rotors"])
     observer = params.get("observer")
-    trim = read_table(inputs["trim"], required=TRIM_COLUMNS)
-    observers = read_table(inputs["observers"], required=OBSERVER_COLUMNS)
+    same = {"aircraft": params.get("aircraft"), "segment": params.get("segment")}
+    check_provenance(inputs["trim"], {"stage": "trim", **same})
+    check_provenance(inputs["observers"], {"stage": "observers", "obsset": params["obsset"], **same})
+    for name in rotors:
+        check_provenance(rotor_path(inputs["signals"], name), {"stage": "acoustics", "rotor": name, "obsset": params["obsset"],
+                                                               "variant": params["variant"], **same})
+    trim = read_table(inputs["trim"], required=TRIM_COLUMNS, nonempty=True)
+    observers = read_table(inputs["observers"], required=OBSERVER_COLUMNS, nonempty=True, finite=True)
+    if observer is not None and int(observer) not in set(observers["observer"].tolist()):
+        raise ValueError(f"observer {observer}: not in {inputs['observers']} (observers "
+                         f"{int(observers['observer'].min())} to {int(observers['observer'].max())})")
+    n_samples = artifact_rows(rotor_path(inputs["signals"], rotors[0])) // (2 * len(observers))
+    check_memory(estimate_bytes("hsi", {"n_psi": 1, "n_r": 1, "samples_per_rev": max(1, n_samples)}, len(observers), len(rotors)),
+                 f"{outputs['hsi']}: HSI of {len(rotors)} rotor(s) x {len(observers)} observers x {n_samples} samples")
     signals = read_signals(inputs["signals"], rotors)
+    for name in rotors:
+        check_observers(signals[name], observers["observer"], str(rotor_path(inputs["signals"], name)), str(inputs["observers"]))
     paths = [str(inputs[key]) for key in ("signals", "observers", "trim")]
     report = []
     for name in rotors:

@@ -3,28 +3,40 @@
 inputs: ``trim`` (trim.parquet). outputs: ``loads``, a directory with, per rotor,
 ``{rotor}.parquet`` (disk table), ``{rotor}_summary.parquet`` (quantity, value, unit) and
 ``{rotor}_history.parquet`` (trim iterations). params: ``rotors`` (rotor name → validated rotor
-configuration, in aircraft order), ``n_psi``, ``n_r`` (disk resolution), ``aircraft``, ``segment``.
+configuration, in aircraft order), ``n_psi``, ``n_r`` (disk resolution), ``aircraft``, ``segment``;
+optional ``allow_outside_validity`` (campaign switch, default false).
+
+Before computing: the trim artifact must be the aircraft's and segment's (provenance), the disk
+must fit in memory (nps.resources); after each rotor trim: flap angle and controls (nps.validity).
 """
 
 from __future__ import annotations
 
+from nps import validity
 from nps.bet import DiskGrid, trim_rotor
-from nps.io import read_table, rotor_path, write_table
+from nps.io import check_provenance, read_table, rotor_path, write_table
+from nps.resources import check_memory, estimate_bytes
 from nps.rotor import OperatingPoint, RotorGeometry
 from nps.trim import TRIM_COLUMNS, trim_row
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:
-    trim = read_table(inputs["trim"], required=TRIM_COLUMNS)
+    check_provenance(inputs["trim"], {"stage": "trim", "aircraft": params["aircraft"], "segment": params["segment"]})
+    trim = read_table(inputs["trim"], required=TRIM_COLUMNS, nonempty=True)
     grid = DiskGrid(int(params["n_psi"]), int(params["n_r"]))
+    check_memory(estimate_bytes("loads", {"n_psi": grid.n_psi, "n_r": grid.n_r}, n_rotors=len(params["rotors"])),
+                 f"{outputs['loads']}: loads on a {grid.n_psi} x {grid.n_r} disk (n_psi x n_r)")
     report = []
     for name, rotor in params["rotors"].items():
         geometry = RotorGeometry.from_config(rotor)
         result = trim_rotor(geometry, OperatingPoint.from_trim_row(trim_row(trim, name, inputs["trim"])), grid)
+        warnings = validity.recorded(validity.loads_findings(name, result.summary()), params,
+                                     str(rotor_path(outputs["loads"], name)))
         meta = {"aircraft": params["aircraft"], "segment": params["segment"], "rotor": name, "n_psi": grid.n_psi,
-                "n_r": grid.n_r, "inputs": [str(inputs["trim"])]}
+                "n_r": grid.n_r, "inputs": [str(inputs["trim"])], **warnings}
         write_table(result.disk, rotor_path(outputs["loads"], name), stage="loads", metadata=meta)
         write_table(result.summary(), rotor_path(outputs["loads"], name, "_summary"), stage="loads", metadata=meta)
         write_table(result.history, rotor_path(outputs["loads"], name, "_history"), stage="loads", metadata=meta)
-        report += [f"rotor {name}:", result.summary().to_string(index=False), result.history.to_string(index=False)]
+        report += [f"rotor {name}:", result.summary().to_string(index=False), result.history.to_string(index=False)
+                   + validity.report(warnings)]
     return "\n".join(report)

@@ -13,7 +13,13 @@ relative_humidity_pct), ``broadband`` (``pegg``, ``bpm`` or ``none``; true/false
 ``harmonics`` (first and last main-rotor BPF harmonic of BVISPL), with BPM ``rotor_configs`` (rotor →
 validated aircraft-configuration entry), ``aircraft``, ``segment``, ``obsset``, ``variant``.
 Pegg outside its helicopter main-rotor data range, and BPM on elements outside RP-1218's, are reported
-as warnings (stderr and the report).
+as warnings (stderr and the report). ``rotor_configs`` (rotor → validated rotor configuration) is also
+used for Pegg's validity checks; optional ``allow_outside_validity``.
+
+Before computing: provenance of every input, every observer in every rotor's signals, memory, and
+with Pegg broadband its peak frequency and mean lift coefficient (nps.validity.broadband_findings).
+The metrics carry the observer table's validity warnings with their own: levels at observers
+outside the envelope are outside it too.
 """
 
 from __future__ import annotations
@@ -22,11 +28,14 @@ import warnings
 
 import numpy as np
 
+from nps import validity
 from nps.atmosphere import isa
 from nps.broadband import pegg_outside_range
 from nps.config import broadband_model
-from nps.io import read_signals, read_table, rotor_path, write_table
+from nps.io import artifact_rows, check_provenance, read_signals, read_table, rotor_path, write_table
 from nps.metrics import STUDY_BANDS, metrics_tables
+from nps.resources import check_memory, estimate_bytes
+from nps.signals import check_observers
 from nps.trim import trim_row
 
 
@@ -49,13 +58,34 @@ def _bpm_band_msp(inputs: dict, params: dict, trim, observers, atmosphere) -> tu
     return out, notes
 
 
+
 def run(inputs: dict, outputs: dict, params: dict) -> str:
     rotors = list(params["rotors"])
     model = broadband_model(params["broadband"])
-    signals = read_signals(inputs["signals"], rotors)
-    hsi = read_signals(inputs["hsi"], rotors) if "hsi" in inputs else None
-    trim = read_table(inputs["trim"])
-    observers = read_table(inputs["observers"])
+    same = {"aircraft": params["aircraft"], "segment": params["segment"]}
+    check_provenance(inputs["trim"], {"stage": "trim", **same})
+    observer_meta = check_provenance(inputs["observers"], {"stage": "observers", "obsset": params["obsset"], **same})
+    signal_dirs = {"signals": "acoustics", **({"hsi": "hsi"} if "hsi" in inputs else {})}
+    for key, stage in signal_dirs.items():
+        for name in rotors:
+            check_provenance(rotor_path(inputs[key], name), {"stage": stage, "rotor": name, "obsset": params["obsset"],
+                                                             "variant": params["variant"], **same})
+    trim = read_table(inputs["trim"], nonempty=True)
+    observers = read_table(inputs["observers"], nonempty=True, finite=True)
+    findings = validity.broadband_findings({"rotors": list(params["rotor_configs"].values())}, trim) if model == "pegg" else []
+    recorded = validity.recorded(findings, params, str(outputs["metrics"]))
+    inherited = observer_meta.get("validity_warnings", [])
+    if inherited or recorded:
+        recorded = {"validity_warnings": inherited + recorded.get("validity_warnings", [])}
+    n_samples = artifact_rows(rotor_path(inputs["signals"], rotors[0])) // (2 * len(observers))
+    check_memory(estimate_bytes("metrics", {"n_psi": 1, "n_r": 1, "samples_per_rev": max(1, n_samples)}, len(observers),
+                                len(rotors), "hsi" in inputs),
+                 f"{outputs['metrics']}: metrics of {len(rotors)} rotor(s) x {len(observers)} observers x {n_samples} samples")
+    loaded = {key: read_signals(inputs[key], rotors) for key in signal_dirs}
+    for key, tables in loaded.items():
+        for name, table in tables.items():
+            check_observers(table, observers["observer"], str(rotor_path(inputs[key], name)), str(inputs["observers"]))
+    signals, hsi = loaded["signals"], loaded.get("hsi")
     atm = params["atmosphere"]
     state = isa(atm["altitude_m"], atm["isa_delta_K"], atm["relative_humidity_pct"])
     atmosphere = state if params["absorption"] else None
@@ -78,7 +108,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
                                           model != "none", harmonics, bpm_msp)
     meta = {"aircraft": params["aircraft"], "segment": params["segment"], "obsset": params["obsset"],
             "variant": params["variant"], "bvispl_harmonics": list(harmonics), "absorption": params["absorption"],
-            "broadband": params["broadband"], "hsi": hsi is not None}
+            "broadband": params["broadband"], "hsi": hsi is not None, **recorded}
     write_table(table, outputs["metrics"], stage="metrics", metadata=meta)
     write_table(bands, outputs["bands"], stage="metrics", metadata=meta)
     if "figure" in outputs:
@@ -87,4 +117,4 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
         loudest_observer_figure(table, bands, levels, trim, harmonics,
                                 f"{params['aircraft']} {params['segment']} {params['obsset']} ({params['variant']})",
                                 outputs["figure"])
-    return "\n".join(notes + [table.describe().to_string()])
+    return "\n".join(notes + [table.describe().to_string()]) + validity.report(recorded)

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from nps.io import read_table, rotor_path, write_table
+from nps.io import check_provenance, read_metadata, read_table, rotor_path, write_table
 from nps.study import STAGES, segment_summary
 
 
@@ -28,24 +28,54 @@ def stage_wall_times(benchmark_dir: str | Path, aircraft: str, segment: str) -> 
     return times
 
 
+def validity_warnings(paths) -> str:
+    """The distinct ``validity_warnings`` messages recorded in the artifacts ``paths`` (metadata), in
+    order, joined by " | "; "" when every artifact is inside the validity envelope."""
+    messages = []
+    for path in paths:
+        for warning in read_metadata(path).get("validity_warnings", []):
+            if warning["message"] not in messages:
+                messages.append(warning["message"])
+    return " | ".join(messages)
+
+
+def segment_artifacts(inputs: dict, params: dict, segment: str) -> dict:
+    """Artifacts of one segment the summary reads or lists the warnings of (trim, loads summaries,
+    wake tables where computed, metrics of each variant) → the provenance each must have."""
+    same = {"aircraft": params["aircraft"], "segment": segment}
+    artifacts = {inputs[f"trim_{segment}"]: {"stage": "trim", **same}}
+    artifacts.update({rotor_path(inputs[f"loads_{segment}"], r, "_summary"): {"stage": "loads", "rotor": r, **same}
+                      for r in params["rotors"]})
+    if f"wake_{segment}" in inputs:
+        artifacts.update({rotor_path(inputs[f"wake_{segment}"], r): {"stage": "wake", "rotor": r, **same} for r in params["rotors"]})
+    artifacts.update({inputs[f"metrics_{segment}_{v}"]: {"stage": "metrics", "variant": v, "obsset": "hemisphere", **same}
+                      for v in params["variants"][segment]})
+    return artifacts
+
+
 def run(inputs: dict, outputs: dict, params: dict) -> str:
     """One summary row per segment: levels and hotspots, trim state, wall time per stage.
 
     inputs: ``trim_<segment>``, ``loads_<segment>`` (directory), ``metrics_<segment>_<variant>``.
     outputs: ``table`` (Parquet, without the wall times, so it stays bit-reproducible) and ``csv``
-    (with them). params: ``segments``, ``rotors``, ``variants`` (segment → variants),
+    (with them and the column ``validity_warnings``: the findings the artifacts of the segment recorded
+    under ``allow_outside_validity``, "" when none). params: ``segments``, ``rotors``, ``variants`` (segment → variants),
     ``benchmarks`` (Snakemake benchmark directory), ``aircraft``.
     """
     aircraft = params["aircraft"]
     rows = []
     for segment in params["segments"]:
+        recorded = segment_artifacts(inputs, params, segment)
+        for path, expected in recorded.items():
+            check_provenance(path, expected)
         trim = read_table(inputs[f"trim_{segment}"])
         loads = {r: read_table(rotor_path(inputs[f"loads_{segment}"], r, "_summary")) for r in params["rotors"]}
         metrics = {v: read_table(inputs[f"metrics_{segment}_{v}"]) for v in params["variants"][segment]}
-        rows.append(segment_summary(aircraft, segment, trim, loads, metrics,
-                                    stage_wall_times(params["benchmarks"], aircraft, segment)))
+        rows.append({**segment_summary(aircraft, segment, trim, loads, metrics,
+                                       stage_wall_times(params["benchmarks"], aircraft, segment)),
+                     "validity_warnings": validity_warnings(recorded)})
     table = pd.DataFrame(rows)
-    wall = [c for c in table.columns if c.startswith("wall_")]
-    write_table(table.drop(columns=wall), outputs["table"], stage="summary", metadata={"aircraft": aircraft})
+    csv_only = [c for c in table.columns if c.startswith("wall_")] + ["validity_warnings"]
+    write_table(table.drop(columns=csv_only), outputs["table"], stage="summary", metadata={"aircraft": aircraft})
     table.to_csv(outputs["csv"], index=False, float_format="%.6g")
     return table.to_string()

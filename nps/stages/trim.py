@@ -3,11 +3,16 @@
 inputs: none. outputs: ``trim`` (trim.parquet, one row per rotor, :data:`nps.trim.TRIM_COLUMNS`).
 params: ``aircraft_config`` (validated aircraft configuration), ``speeds`` (the mission segment's entry for
 this aircraft: forward_speed_mps, climb_speed_mps, optional rotor_omega_scale), ``atmosphere``
-(altitude_m, isa_delta_K, relative_humidity_pct), ``segment`` (segment id).
+(altitude_m, isa_delta_K, relative_humidity_pct), ``segment`` (segment id); optional
+``allow_outside_validity`` (campaign switch, default false).
+
+Validity (nps.validity): hover tip Mach and Lock number before the trim, advance ratio, advancing
+tip Mach, blade loading, mean lift and vortex-ring state after it.
 """
 
 from __future__ import annotations
 
+from nps import validity
 from nps.atmosphere import isa
 from nps.io import write_table
 from nps.trim import FlightCondition, trim_aircraft
@@ -16,8 +21,12 @@ from nps.trim import FlightCondition, trim_aircraft
 def run(inputs: dict, outputs: dict, params: dict) -> str:
     aircraft, speeds, atm = params["aircraft_config"], params["speeds"], params["atmosphere"]
     atmosphere = isa(atm["altitude_m"], atm["isa_delta_K"], atm["relative_humidity_pct"])
+    where = str(outputs["trim"])
+    before = validity.aircraft_findings(aircraft, atmosphere.speed_of_sound_mps, speeds.get("rotor_omega_scale"))
+    validity.recorded(before, params, where)  # refuses before the trim unless allowed
     flight = FlightCondition(speeds["forward_speed_mps"], speeds["climb_speed_mps"], atmosphere)
     table = trim_aircraft(aircraft, flight, speeds.get("rotor_omega_scale"))
+    warnings = validity.recorded(before + validity.trim_findings(aircraft, table), params, where)
     write_table(table, outputs["trim"], stage="trim",
-                metadata={"aircraft": aircraft["name"], "segment": params["segment"], "speeds": dict(speeds)})
-    return table.to_string()
+                metadata={"aircraft": aircraft["name"], "segment": params["segment"], "speeds": dict(speeds), **warnings})
+    return table.to_string() + validity.report(warnings)

@@ -15,15 +15,19 @@ node per snapshot over one blade passage, ``{rotor}_vtk/``, with the free wake `
 validated rotor configuration), ``wake`` (config ``wake`` section: model, A, B, C, D,
 core_radius_chords, core_growth, optional free), ``revolutions`` (wake age kept), ``steps_per_rev`` (vortex segments per revolution),
 ``aircraft``, ``segment``; optional ``step_deg`` (snapshot spacing, default 5°), ``unsteady``
-(Sears response, default true).
+(Sears response, default true), ``allow_outside_validity`` (campaign switch, default false).
+
+Before computing: provenance of the trim and loads artifacts (aircraft, segment, rotor), memory
+(nps.resources) and, per rotor, the wake length (nps.validity.wake_findings).
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from nps import bvi, freewake, interaction, vtk, wake
-from nps.io import read_table, rotor_path, write_table
+from nps import bvi, freewake, interaction, validity, vtk, wake
+from nps.io import check_provenance, read_table, rotor_path, write_table
+from nps.resources import check_memory, estimate_bytes
 from nps.rotor import RotorGeometry, RotorMotion
 from nps.trim import TRIM_COLUMNS, trim_row
 
@@ -45,12 +49,23 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     model = wake.WakeModel.from_config(params["wake"], params["revolutions"], int(params["steps_per_rev"]))
     bvi_model = bvi.BVIModel(unsteady=bool(params.get("unsteady", True)))
     step_deg = float(params.get("step_deg", 5.0))
-    trim = read_table(inputs["trim"], required=TRIM_COLUMNS)
+    same = {"aircraft": params["aircraft"], "segment": params["segment"]}
+    check_provenance(inputs["trim"], {"stage": "trim", **same})
+    trim = read_table(inputs["trim"], required=TRIM_COLUMNS, nonempty=True)
     wake_dir, bvi_dir = Path(outputs["wake"]), Path(outputs["bvi"])
     names = list(params["rotors"])
     paths = {name: (rotor_path(inputs["loads"], name), rotor_path(inputs["loads"], name, "_summary")) for name in names}
-    disks = {name: read_table(paths[name][0], required=bvi.DISK_COLUMNS) for name in names}
+    warnings = {}
+    for name in names:  # every input and the wake length checked before the first rotor is computed
+        for path in paths[name]:
+            check_provenance(path, {"stage": "loads", "rotor": name, **same})
+        warnings[name] = validity.recorded(validity.wake_findings(model, trim_row(trim, name, str(inputs["trim"]))),
+                                           params, str(rotor_path(wake_dir, name)))
+    disks = {name: read_table(paths[name][0], required=bvi.DISK_COLUMNS, nonempty=True) for name in names}
     summaries = {name: read_table(paths[name][1], required=SUMMARY_COLUMNS) for name in names}
+    check_memory(estimate_bytes("wake", {"n_psi": model.steps_per_rev, "n_r": disks[names[0]]["r_m"].nunique(),
+                                          "wake_revolutions": model.revolutions}, n_rotors=len(names)),
+                 f"{wake_dir}: wake of {model.revolutions:g} revolutions x {model.steps_per_rev} steps")
     free = params["wake"].get("model", "beddoes") == "free"
     if free:
         coupled = interaction.aircraft_bvi_loads(trim, params["rotors"], disks, summaries, model,
@@ -60,7 +75,8 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
         disk, inputs_of = disks[name], [str(paths[name][0]), str(paths[name][1]), str(inputs["trim"])]
         ct = bvi.summary_value(summaries[name], "ct", str(paths[name][1]))
         row = trim_row(trim, name, str(inputs["trim"]))
-        meta = {"aircraft": params["aircraft"], "segment": params["segment"], "rotor": name, "wake_model": model.__dict__}
+        meta = {"aircraft": params["aircraft"], "segment": params["segment"], "rotor": name, "wake_model": model.__dict__,
+                **warnings[name]}
         # wake geometry snapshots over one blade passage (the wake is periodic in 2π/B)
         state = bvi.wake_state(disk, row, ct)
         motion = RotorMotion.from_trim_row(row)
@@ -74,7 +90,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
         write_table(result.disk, rotor_path(bvi_dir, name), stage="bvi",
                     metadata={**meta, "bvi_model": bvi_model.__dict__, "inputs": inputs_of})
         report.append(f"rotor {name}: {len(table)} wake nodes; peak |dU_P| = {abs(result.d_up_mps).max():.4g} m/s, "
-                      f"peak |dU_T| = {abs(result.d_ut_mps).max():.4g} m/s")
+                      f"peak |dU_T| = {abs(result.d_ut_mps).max():.4g} m/s" + validity.report(warnings[name]))
     if free:
         write_table(coupled.summary, wake_dir / "interaction.parquet", stage="wake",
                     metadata={"aircraft": params["aircraft"], "segment": params["segment"], "free_wake": params["wake"].get("free", {})})

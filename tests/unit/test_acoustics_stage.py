@@ -82,9 +82,9 @@ def test_errors_name_the_rotor_file_and_field(tmp_path):
         rotor_signals(hover_disk(), trim_rows(), observers(), "tail", "main", 64, ThicknessModel(), 0.0)
     with pytest.raises(AcousticsError, match="samples_per_rev"):
         common_grid(trim_row(trim_rows(), "main"), 4)
-    write_table(hover_disk().drop(columns="thickness_m"), tmp_path / "disks" / "main.parquet", stage="test")
-    write_table(complete_trim(trim_rows()), tmp_path / "trim.parquet", stage="test")
-    write_table(observers(), tmp_path / "obs.parquet", stage="test")
+    write_table(hover_disk().drop(columns="thickness_m"), tmp_path / "disks" / "main.parquet", stage="loads")
+    write_table(complete_trim(trim_rows()), tmp_path / "trim.parquet", stage="trim")
+    write_table(observers(), tmp_path / "obs.parquet", stage="observers")
     params = {"rotors": ["main"], "hinge_offsets_m": {"main": 0.0}, "thickness": "dual_compact", "chord_fractions": [0.13, 0.87],
               "samples_per_rev": 64, "aircraft": "x", "segment": "seg1", "obsset": "obs", "variant": "base"}
     with pytest.raises(ArtifactError, match="thickness_m"):
@@ -95,9 +95,9 @@ def test_errors_name_the_rotor_file_and_field(tmp_path):
 
 def test_cli_round_trip(tmp_path, capsys):
     """``python -m nps acoustics`` writes the contract's columns; a bad rotor name exits 2 with one line."""
-    write_table(hover_disk(), tmp_path / "disks" / "main.parquet", stage="test")
-    write_table(complete_trim(trim_rows()), tmp_path / "trim.parquet", stage="test")
-    write_table(observers(), tmp_path / "obs.parquet", stage="test")
+    write_table(hover_disk(), tmp_path / "disks" / "main.parquet", stage="loads")
+    write_table(complete_trim(trim_rows()), tmp_path / "trim.parquet", stage="trim")
+    write_table(observers(), tmp_path / "obs.parquet", stage="observers")
     args = ["acoustics", "--disks", str(tmp_path / "disks"), "--trim", str(tmp_path / "trim.parquet"),
             "--observers", str(tmp_path / "obs.parquet"), "--aircraft", "config/aircraft/helicopter.yaml",
             "--samples-per-rev", "64", "--out-dir", str(tmp_path / "p")]

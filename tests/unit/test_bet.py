@@ -184,7 +184,7 @@ def test_cli_writes_disk_summary_and_history(tmp_path, repo_root):
     trim = complete_trim(pd.DataFrame({"rotor": ["main"], "omega_rad_s": [28.0], "mu_x": [0.2], "mu_y": [0.0], "mu_z": [0.02],
                          "density_kg_m3": [1.225], "speed_of_sound_mps": [340.3], "thrust_N": [WEIGHT_N],
                          "roll_moment_Nm": [0.0], "pitch_moment_Nm": [0.0]}))
-    write_table(trim, tmp_path / "trim.parquet", stage="test")
+    write_table(trim, tmp_path / "trim.parquet", stage="trim")
     out = tmp_path / "loads" / "main.parquet"
     argv = ["loads", "--aircraft", str(repo_root / "config/aircraft/helicopter.yaml"), "--rotor", "main",
             "--trim", str(tmp_path / "trim.parquet"), "--n-psi", "36", "--n-r", "10", "--out-dir", str(out.parent)]

@@ -240,9 +240,9 @@ def test_cli_writes_hsi_table_diagnostics_intermediate_and_figure(tmp_path):
     row = trim_row(radius=2.0, mtip=0.86, velocity=(30.0, 0.0, 0.0))
     period = 2 * np.pi / row["omega_rad_s"]
     time_s = np.arange(256) * period / 256
-    write_table(complete_trim(pd.DataFrame([row])), tmp_path / "trim.parquet", stage="test")
-    write_table(_signals([0, 1], time_s), tmp_path / "sig" / "main.parquet", stage="test")
-    write_table(_observers([0, 1], [[20.0, 0, 0], [0, 0, -20.0]], (30.0, 0, 0)), tmp_path / "obs.parquet", stage="test")
+    write_table(complete_trim(pd.DataFrame([row])), tmp_path / "trim.parquet", stage="trim")
+    write_table(_signals([0, 1], time_s), tmp_path / "sig" / "main.parquet", stage="acoustics")
+    write_table(_observers([0, 1], [[20.0, 0, 0], [0, 0, -20.0]], (30.0, 0, 0)), tmp_path / "obs.parquet", stage="observers")
     args = ["--signals", str(tmp_path / "sig"), "--observers", str(tmp_path / "obs.parquet"), "--trim", str(tmp_path / "trim.parquet"),
             "--out-dir", str(tmp_path / "hsi"), "--observer", "0", "--figure", str(tmp_path / "fig.png"), "--rotor"]
     assert main(args + ["main"]) == 0

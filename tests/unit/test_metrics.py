@@ -158,13 +158,13 @@ def test_cli_end_to_end(tmp_path, repo_root):
     from tests.trim_tables import complete_trim
 
     trim = complete_trim(pd.DataFrame([_trim_row("main", 0.0, 4, 28.0), _trim_row("tail", -9.9, 4, 28.0)]))
-    write_table(trim, tmp_path / "trim.parquet", stage="test")
+    write_table(trim, tmp_path / "trim.parquet", stage="trim")
     observers = pd.DataFrame({"observer": np.int32([0, 1]), "x_m": [0.0, 76.2], "y_m": 0.0, "z_m": [-76.2, 0.0],
                               "vx_mps": 0.0, "vy_mps": 0.0, "vz_mps": 0.0,
                               "elevation_deg": [-90.0, 0.0], "azimuth_deg": [0.0, 180.0]})
-    write_table(observers, tmp_path / "obs.parquet", stage="test")
+    write_table(observers, tmp_path / "obs.parquet", stage="observers")
     for rotor in ("main", "tail"):
-        write_table(_signal_table({"thickness": p, "loading": 0.5 * p}, time), tmp_path / "sig" / f"{rotor}.parquet", stage="test")
+        write_table(_signal_table({"thickness": p, "loading": 0.5 * p}, time), tmp_path / "sig" / f"{rotor}.parquet", stage="acoustics")
     args = ["--aircraft", str(repo_root / "config/aircraft/helicopter.yaml"), "--trim", str(tmp_path / "trim.parquet"),
             "--observers", str(tmp_path / "obs.parquet"), "--out", str(tmp_path / "m.parquet"),
             "--bands-out", str(tmp_path / "b.parquet"), "--signals", str(tmp_path / "sig")]

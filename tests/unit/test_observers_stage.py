@@ -1,5 +1,6 @@
 """Observer-set stage: set centre, directions of any set, artifact and CLI errors (nps.observers, nps.stages.observers)."""
 
+from nps.config import load_aircraft
 import numpy as np
 import pandas as pd
 import pytest
@@ -48,11 +49,11 @@ def test_directions_invert_the_map_convention(az, el, dist):
 def test_run_writes_every_set_kind_with_directions(tmp_path):
     """Hemisphere about the main hub at 10 R moving with the aircraft; ground grid gets directions too."""
     trim_path = tmp_path / "trim.parquet"
-    write_table(complete_trim(trim_table({"main": (0.0, 0.0, 1.8), "tail": (-9.9, 0.0, 1.9)})), trim_path, stage="test")
+    write_table(complete_trim(trim_table({"main": (0.0, 0.0, 1.8), "tail": (-9.9, 0.0, 1.9)})), trim_path, stage="trim")
 
     def run(spec, roles, out):
         params = {"spec": spec, "rotor_roles": roles, "reference_radius_m": 7.62, "aircraft": "x", "segment": "seg1",
-                  "obsset": out.stem}
+                  "obsset": out.stem, "rotors": {r["name"]: r for r in load_aircraft("config/aircraft/helicopter.yaml")["rotors"]}}
         run_observers({"trim": trim_path}, {"observers": out}, params)
         return read_table(out)
 

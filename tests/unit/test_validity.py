@@ -170,6 +170,26 @@ def test_warnings_round_trip_through_the_artifact_metadata(tmp_path):
     assert stored == warnings and stored[0]["value"] == 1000.0 and "Lock number = 1000" in stored[0]["message"]
 
 
+def test_recorded_adds_a_metadata_key_only_for_allowed_findings(tmp_path):
+    """A stage inside the envelope gets {} (its artifact unchanged), outside it refuses by default, and
+    with the switch gets the warnings; the summary lists each distinct message once."""
+    from nps.io import write_table
+    from nps.stages.summary import validity_warnings
+
+    assert v.recorded([None], {}, "x") == {}
+    with pytest.raises(v.ValidityError):
+        v.recorded([v.check_lock_number(1000.0, "main")], {}, "x")
+    meta = v.recorded([v.check_lock_number(1000.0, "main")], {"allow_outside_validity": True}, "x")
+    assert [w["quantity"] for w in meta["validity_warnings"]] == ["rotor 'main': Lock number"]
+    assert v.report(meta).startswith("\nwarning: rotor 'main': Lock number = 1000")
+    for name in ("a", "b"):
+        write_table(pd.DataFrame({"a": [1.0]}), tmp_path / f"{name}.parquet", stage="trim", metadata=meta)
+    write_table(pd.DataFrame({"a": [1.0]}), tmp_path / "c.parquet", stage="trim")
+    paths = [tmp_path / f"{name}.parquet" for name in "abc"]
+    assert validity_warnings(paths) == meta["validity_warnings"][0]["message"]
+    assert validity_warnings(paths[2:]) == ""
+
+
 # --- the issue-14 "worst" inputs ---------------------------------------------------------
 
 def test_worst_200_mps_helicopter(helicopter):

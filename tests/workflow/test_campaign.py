@@ -19,7 +19,10 @@ import yaml
 REPO = Path(__file__).resolve().parents[2]
 
 TINY = {
-    "campaign": {"mission": "demo", "aircraft": ["helicopter", "coaxial"], "segments": ["seg2", "seg3"]},
+    # 2 wake revolutions are short of the ~2.5 the seg3 descent needs (docs/models/validity.md): run with the
+    # switch, the warning recorded in the wake and BVI tables' metadata and in the summary CSV
+    "campaign": {"mission": "demo", "aircraft": ["helicopter", "coaxial"], "segments": ["seg2", "seg3"],
+                 "allow_outside_validity": True},
     "observer_sets": {
         "hemisphere": {"kind": "hemisphere", "radius_R": 10.0, "n_elevation": 4, "n_azimuth": 8, "moving": True},
         "hsi": {"kind": "points_ahead", "radius_R": 10.0, "elevations_deg": [0.0, -26.0], "moving": True, "segments": ["seg2"]},
@@ -83,8 +86,16 @@ def test_campaign_reproduces_the_committed_manifest(campaign_dir):
     sys.path.insert(0, str(REPO / "benchmarks"))
     from artifact_digests import compare, digests, read_manifest
 
-    problems = compare(digests(campaign_dir / "results"), read_manifest(REPO / "tests/data/manifests/tiny_campaign.sha256"))
+    results = campaign_dir / "results"
+    manifest = read_manifest(REPO / "tests/data/manifests/tiny_campaign.sha256")
+    # the seg3 wake and BVI tables (2 wake revolutions, short of the descent's ~2.5) carry their validity
+    # warning, the manifest predates it: byte-identical once that one metadata key is removed
+    warned = sorted(n for n in manifest if b"nps.validity_warnings" in (pq.read_schema(results / n).metadata or {}))
+    assert warned == sorted(n for n in manifest if re.fullmatch(r"\w+/seg3/(wake|bvi)/\w+\.parquet", n)), warned
+    problems = compare(digests(results, drop=("nps.validity_warnings",)), manifest)
     assert not problems, problems[:20]
+    summary = (results / "helicopter/summary.csv").read_text()
+    assert "rotor 'main': wake_revolutions = 2 is outside the validity limit" in summary
 
 
 def test_failing_job_writes_its_error_into_its_log(tmp_path):

@@ -13,6 +13,8 @@ rule observers:
         spec=lambda wildcards: config["observer_sets"][wildcards.obsset],
         rotor_roles=lambda wildcards: {r["name"]: r["role"] for r in aircraft_config(wildcards)["rotors"]},
         reference_radius_m=lambda wildcards: aircraft_config(wildcards)["rotors"][0]["radius_m"],
+        rotors=rotor_configs,
+        allow_outside_validity=ALLOW_OUTSIDE_VALIDITY,
         code=code("observers"),
     log:
         log_path("observers", "{aircraft}/{segment}/{obsset}"),

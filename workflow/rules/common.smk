@@ -16,6 +16,8 @@ try:
 except ConfigError as error:
     sys.stderr.write(f"NPS configuration error: {error}\n")
     raise SystemExit(1)
+# campaign switch: findings outside the models' validity envelope become warnings (nps.validity)
+ALLOW_OUTSIDE_VALIDITY = config["campaign"].get("allow_outside_validity", False)
 RESULTS = "results"
 ALL_TARGETS = []
 STAGE_SCRIPT = "../scripts/stage.py"
@@ -196,3 +198,6 @@ def profile_segments():
 
 def footprint_inputs(wildcards):
     return {f"hemisphere_{s}": f"{RESULTS}/{wildcards.aircraft}/{s}/source_hemisphere.parquet" for s in profile_segments()}
+
+
+# ---- resources: mem_mb of the jobs whose arrays scale with the resolution (nps.resources) ----

@@ -12,6 +12,7 @@ rule loads:
         rotors=rotor_configs,
         n_psi=config["resolution"]["n_psi"],
         n_r=config["resolution"]["n_r"],
+        allow_outside_validity=ALLOW_OUTSIDE_VALIDITY,
         code=code("loads"),
     log:
         log_path("loads"),

@@ -24,8 +24,8 @@ rule metrics:
         broadband=config["models"]["broadband"],
         absorption=config["models"]["absorption"],
         harmonics=config["acoustics"]["bvispl_harmonics"],
-        # BPM broadband: blade count, radius and rotation sense of each rotor
-        **({"rotor_configs": rotor_configs} if CAMPAIGN.broadband_model() == "bpm" else {}),
+        rotor_configs=rotor_configs,
+        allow_outside_validity=ALLOW_OUTSIDE_VALIDITY,
         code=code("metrics"),
     log:
         log_path("metrics", "{aircraft}/{segment}/{obsset}_{variant}"),

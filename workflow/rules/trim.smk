@@ -8,6 +8,7 @@ rule trim:
         aircraft_config=aircraft_config,
         speeds=lambda wildcards: CAMPAIGN.segment(wildcards.segment)["aircraft"][wildcards.aircraft],
         atmosphere=config["atmosphere"],
+        allow_outside_validity=ALLOW_OUTSIDE_VALIDITY,
         code=code("trim"),
     log:
         log_path("trim"),

@@ -18,6 +18,7 @@ rule wake:
         wake=config["wake"],
         revolutions=config["resolution"]["wake_revolutions"],
         steps_per_rev=config["resolution"]["n_psi"],
+        allow_outside_validity=ALLOW_OUTSIDE_VALIDITY,
         code=code("wake"),
     log:
         log_path("wake"),
