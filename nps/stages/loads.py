@@ -4,11 +4,17 @@ inputs: ``trim`` (trim.parquet). outputs: ``loads``, a directory with, per rotor
 ``{rotor}.parquet`` (disk table), ``{rotor}_summary.parquet`` (quantity, value, unit) and
 ``{rotor}_history.parquet`` (trim iterations). params: ``rotors`` (rotor name → validated rotor
 configuration, in aircraft order), ``n_psi``, ``n_r`` (disk resolution), ``aircraft``, ``segment``.
+
+Each rotor is solved under its control mode (``control``, ``pitch_deg``, ``flapping``;
+:func:`nps.control.loads_at_trim`): ``collective`` trims the pitch to the trim table's targets,
+``rpm`` takes the loads at the table's rotor speed (solved by the trim stage), ``fixed`` at the
+given pitch and speed. The summary of an ``rpm`` or ``fixed`` rotor adds its ``omega_rad_s``.
 """
 
 from __future__ import annotations
 
-from nps.bet import DiskGrid, trim_rotor
+from nps.bet import DiskGrid
+from nps.control import RotorControl, loads_at_trim
 from nps.io import read_table, rotor_path, write_table
 from nps.rotor import OperatingPoint, RotorGeometry
 from nps.trim import TRIM_COLUMNS, trim_row
@@ -19,12 +25,14 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     grid = DiskGrid(int(params["n_psi"]), int(params["n_r"]))
     report = []
     for name, rotor in params["rotors"].items():
-        geometry = RotorGeometry.from_config(rotor)
-        result = trim_rotor(geometry, OperatingPoint.from_trim_row(trim_row(trim, name, inputs["trim"])), grid)
+        geometry, control = RotorGeometry.from_config(rotor), RotorControl.from_config(rotor)
+        solution = loads_at_trim(geometry, OperatingPoint.from_trim_row(trim_row(trim, name, inputs["trim"])), grid, control)
+        result = solution.result
+        summary = result.summary() if control.mode == "collective" else solution.summary()
         meta = {"aircraft": params["aircraft"], "segment": params["segment"], "rotor": name, "n_psi": grid.n_psi,
                 "n_r": grid.n_r, "inputs": [str(inputs["trim"])]}
         write_table(result.disk, rotor_path(outputs["loads"], name), stage="loads", metadata=meta)
-        write_table(result.summary(), rotor_path(outputs["loads"], name, "_summary"), stage="loads", metadata=meta)
+        write_table(summary, rotor_path(outputs["loads"], name, "_summary"), stage="loads", metadata=meta)
         write_table(result.history, rotor_path(outputs["loads"], name, "_history"), stage="loads", metadata=meta)
-        report += [f"rotor {name}:", result.summary().to_string(index=False), result.history.to_string(index=False)]
+        report += [f"rotor {name} (control {control.mode}):", summary.to_string(index=False), result.history.to_string(index=False)]
     return "\n".join(report)

@@ -8,6 +8,9 @@ rule trim:
         aircraft_config=aircraft_config,
         speeds=lambda wildcards: CAMPAIGN.segment(wildcards.segment)["aircraft"][wildcards.aircraft],
         atmosphere=config["atmosphere"],
+        # disk resolution of the loads that solve the speeds of rpm-controlled rotors (nps.control.trim_rotor_speeds)
+        n_psi=config["resolution"]["n_psi"],
+        n_r=config["resolution"]["n_r"],
         code=code("trim"),
     log:
         log_path("trim"),
