@@ -345,11 +345,11 @@ def load_rotor_test(path: str | Path) -> dict:
     """Read and validate one rotor test (``config/tests/*.yaml``, nps.rotor_test) with its rotor.
 
     Returns the test with the schema's defaults filled in, ``rotor_config`` (the rotor as the stages
-    use it: :func:`nps.rotor_test.test_rotor`, validated like an aircraft's ``rotors[]`` entry, tables
+    use it: :func:`nps.rotor_test.rotor_for_test`, validated like an aircraft's ``rotors[]`` entry, tables
     resolved) and ``microphones_T`` / ``microphone_groups`` (positions in the test frame, group index).
     """
     from nps.observers import ObserverError
-    from nps.rotor_test import microphone_positions, test_rotor
+    from nps.rotor_test import microphone_positions, rotor_for_test
 
     path = Path(path)
     schema = load_schema("rotor_test")
@@ -359,12 +359,12 @@ def load_rotor_test(path: str | Path) -> dict:
     ref, base = data["rotor"], path.parent
     if "file" in ref:
         rotor_file = base / ref["file"]
-        rotor = test_rotor(read_yaml(rotor_file), data["condition"])
+        rotor = rotor_for_test(read_yaml(rotor_file), data["condition"])
         aircraft_schema = load_schema("aircraft")
         validate(rotor, {"$defs": aircraft_schema["$defs"], "$ref": "#/$defs/rotor"}, rotor_file)
     else:
         rotor_file = base / ref["aircraft"]
-        rotor = test_rotor(aircraft_rotor(load_aircraft(rotor_file), ref["name"], rotor_file), data["condition"])
+        rotor = rotor_for_test(aircraft_rotor(load_aircraft(rotor_file), ref["name"], rotor_file), data["condition"])
     _raise(rotor_file, [(f"rotor '{rotor['name']}'{field[len('rotor'):]}", what)
                         for field, what in _rotor_sections(rotor, "rotor", rotor_file.parent)])
     try:

@@ -158,7 +158,8 @@ def trim_rotor_speeds(aircraft: Mapping, flight, omega_scale: Mapping[str, float
         for name, rotor in controlled.items():
             row = trim_row(table, name)
             solution = solve_rotor(RotorGeometry.from_config(rotor), OperatingPoint.from_trim_row(row), grid,
-                                   RotorControl.from_config(rotor), tol_rel=tol_rel / 4)
+                                   RotorControl.from_config(rotor), tol_rel=tol_rel / 4,
+                                   tip_loss=bool(rotor.get("tip_loss", True)))
             solved[name] = solution.operating_point.omega_rad_s
         moved = max(abs(solved[n] - speeds.get(n, trim_row(table, n)["omega_rad_s"])) / solved[n] for n in solved)
         speeds = solved
@@ -169,7 +170,7 @@ def trim_rotor_speeds(aircraft: Mapping, flight, omega_scale: Mapping[str, float
 
 
 def loads_at_trim(geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, control: RotorControl,
-                  tol_rel: float = 1e-3) -> RotorSolution:
+                  tol_rel: float = 1e-3, tip_loss: bool = True) -> RotorSolution:
     """The loads stage's solution at one trim-table operating point ``op``.
 
     ``collective`` and ``fixed``: :func:`solve_rotor`. ``rpm``: the table's Ω is already the
@@ -178,8 +179,8 @@ def loads_at_trim(geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, c
     meet the table's thrust to ``tol_rel``; a table not trimmed for rpm control fails here.
     """
     if control.mode != "rpm":
-        return solve_rotor(geometry, op, grid, control, tol_rel=tol_rel)
-    solution = solve_rotor(geometry, op, grid, replace(control, mode="fixed"), tol_rel=tol_rel)
+        return solve_rotor(geometry, op, grid, control, tol_rel=tol_rel, tip_loss=tip_loss)
+    solution = solve_rotor(geometry, op, grid, replace(control, mode="fixed"), tol_rel=tol_rel, tip_loss=tip_loss)
     thrust = solution.result.totals.thrust_N
     if not abs(thrust - op.thrust_N) <= tol_rel * abs(op.thrust_N):
         raise TrimError(f"rotor '{geometry.name}': rpm control: the trim table's rotor speed {op.omega_rad_s:.6g} rad/s "

@@ -44,7 +44,7 @@ _ROTOR_DEFAULTS = {"role": "lift", "hub_position_m": [0.0, 0.0, 0.0], "thrust_ax
 MICROPHONE_COLUMNS = ("x_T_m", "y_T_m", "z_T_m", "group")
 
 
-def test_to_flight(p_t_m) -> np.ndarray:
+def t_to_g(p_t_m) -> np.ndarray:
     """Test-frame components (..., 3) to flight-frame components: the 180° turn about z."""
     p = np.asarray(p_t_m, dtype=float)
     return p * np.array([-1.0, -1.0, 1.0])
@@ -60,7 +60,7 @@ def omega_of(condition: Mapping) -> float:
     return float(condition["omega_rad_s"]) if "omega_rad_s" in condition else float(condition["rpm"]) * math.pi / 30.0
 
 
-def test_rotor(rotor: Mapping, condition: Mapping) -> dict:
+def rotor_for_test(rotor: Mapping, condition: Mapping) -> dict:
     """The rotor configuration the stages use: ``rotor`` with the condition's speed and, where the
     condition gives them, its control, pitch and flapping."""
     out = {**_ROTOR_DEFAULTS, **rotor, "omega_rad_s": omega_of(condition)}
@@ -127,7 +127,7 @@ def microphone_positions(specs, base: str | Path = ".") -> tuple[np.ndarray, np.
     return np.concatenate(parts), groups
 
 
-def test_trim_table(rotor: Mapping, condition: Mapping, grid: DiskGrid) -> pd.DataFrame:
+def rotor_test_trim(rotor: Mapping, condition: Mapping, grid: DiskGrid) -> pd.DataFrame:
     """The trim artifact (one row, :data:`nps.trim.TRIM_COLUMNS`) of a test: hub at the origin of G,
     moving at the tunnel speed along +x_G, shaft tilted by the shaft angle.
 
@@ -146,7 +146,7 @@ def test_trim_table(rotor: Mapping, condition: Mapping, grid: DiskGrid) -> pd.Da
                         float(condition.get("roll_moment_Nm", 0.0)), float(condition.get("pitch_moment_Nm", 0.0)))
     if control.mode != "fixed" and "thrust_N" not in condition:
         raise ValueError(f"condition thrust_N: required with control '{control.mode}'")
-    solution = solve_rotor(geometry, op, grid, control)
+    solution = solve_rotor(geometry, op, grid, control, tip_loss=bool(rotor.get("tip_loss", True)))
     op, totals = solution.operating_point, solution.result.totals
     mu = math.hypot(op.mu_x, op.mu_y)
     row = {
@@ -170,7 +170,7 @@ def microphone_table(positions_t_m: np.ndarray, groups: np.ndarray, speed_mps: f
     """Observer artifact of the microphones: G positions at t = 0 (hub at the origin), all moving
     with the hub at ``speed_mps`` along +x_G, with their T positions and group index and the map
     directions seen from the hub."""
-    table = points(test_to_flight(positions_t_m), (float(speed_mps), 0.0, 0.0))
+    table = points(t_to_g(positions_t_m), (float(speed_mps), 0.0, 0.0))
     for i, key in enumerate(MICROPHONE_COLUMNS[:3]):
         table[key] = positions_t_m[:, i]
     table["group"] = groups.astype(np.int32)

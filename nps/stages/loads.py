@@ -26,7 +26,8 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     report = []
     for name, rotor in params["rotors"].items():
         geometry, control = RotorGeometry.from_config(rotor), RotorControl.from_config(rotor)
-        solution = loads_at_trim(geometry, OperatingPoint.from_trim_row(trim_row(trim, name, inputs["trim"])), grid, control)
+        solution = loads_at_trim(geometry, OperatingPoint.from_trim_row(trim_row(trim, name, inputs["trim"])), grid, control,
+                                 tip_loss=bool(rotor.get("tip_loss", True)))
         result = solution.result
         summary = result.summary() if control.mode == "collective" else solution.summary()
         meta = {"aircraft": params["aircraft"], "segment": params["segment"], "rotor": name, "n_psi": grid.n_psi,

@@ -11,13 +11,13 @@ from __future__ import annotations
 from nps.bet import DiskGrid
 from nps.config import load_rotor_test
 from nps.io import write_table
-from nps.rotor_test import microphone_table, test_trim_table
+from nps.rotor_test import microphone_table, rotor_test_trim
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:
     test = load_rotor_test(inputs["config"])
     resolution, condition = test["resolution"], test["condition"]
-    trim = test_trim_table(test["rotor_config"], condition, DiskGrid(int(resolution["n_psi"]), int(resolution["n_r"])))
+    trim = rotor_test_trim(test["rotor_config"], condition, DiskGrid(int(resolution["n_psi"]), int(resolution["n_r"])))
     mics = microphone_table(test["microphones_T"], test["microphone_groups"], condition["tunnel_speed_mps"])
     meta = {"test": test["name"], "condition": dict(condition), "inputs": [str(inputs["config"])]}
     write_table(trim, outputs["trim"], stage="rotor_test", metadata=meta)

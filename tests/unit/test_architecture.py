@@ -14,7 +14,7 @@ MODULES = sorted(
     for p in PACKAGE_DIR.rglob("*.py")
 )
 PHYSICS = ("acoustics", "atmosphere", "bet", "broadband", "bvi", "frames", "hsi", "metrics", "observers", "rotor",
-           "sources", "signals", "spectra", "trim", "wake", "jit", "airfoils", "blade", "control")
+           "sources", "signals", "spectra", "trim", "wake", "jit", "airfoils", "blade", "control", "rotor_test")
 
 
 def _module_level_imports(module: str) -> set[str]:
@@ -98,5 +98,5 @@ def test_every_stage_has_a_command_and_a_run_function(stage):
     from nps.stages import stage_function
 
     assert callable(stage_function(stage))
-    figure_or_study = {"rotor_figures", "hsi_figure", "study_maps", "rotor_maps", "bvi_hotspot", "summary"}
+    figure_or_study = {"rotor_figures", "hsi_figure", "study_maps", "rotor_maps", "bvi_hotspot", "summary", "carpet"}
     assert stage in commands() or stage in figure_or_study

@@ -25,7 +25,7 @@ def test_variant(test):
     return "bvi" if ROTOR_TESTS[test]["models"]["bvi"] else "base"
 
 
-def test_rotor(wildcards):
+def study_rotor(wildcards):
     rotor = ROTOR_TESTS[wildcards.test]["rotor_config"]
     return {rotor["name"]: rotor}
 
@@ -59,7 +59,7 @@ rule rotor_test_loads:
     output:
         loads=directory(f"{TEST_RESULTS}/loads"),
     params:
-        rotors=test_rotor,
+        rotors=study_rotor,
         n_psi=lambda wildcards: ROTOR_TESTS[wildcards.test]["resolution"]["n_psi"],
         n_r=lambda wildcards: ROTOR_TESTS[wildcards.test]["resolution"]["n_r"],
         aircraft=lambda wildcards: wildcards.test,
@@ -80,7 +80,7 @@ rule rotor_test_wake:
         wake=directory(f"{TEST_RESULTS}/wake"),
         bvi=directory(f"{TEST_RESULTS}/bvi"),
     params:
-        rotors=test_rotor,
+        rotors=study_rotor,
         wake=config["wake"],
         revolutions=lambda wildcards: ROTOR_TESTS[wildcards.test]["resolution"]["wake_revolutions"],
         steps_per_rev=lambda wildcards: ROTOR_TESTS[wildcards.test]["resolution"]["n_psi"],
@@ -102,11 +102,11 @@ rule rotor_test_acoustics:
     output:
         signals=directory(f"{TEST_RESULTS}/acoustics"),
     params:
-        rotors=lambda wildcards: list(test_rotor(wildcards)),
+        rotors=lambda wildcards: list(study_rotor(wildcards)),
         thickness=lambda wildcards: ROTOR_TESTS[wildcards.test]["models"]["thickness"],
         chord_fractions=config["acoustics"]["dual_compact_chord_fractions"],
         samples_per_rev=lambda wildcards: ROTOR_TESTS[wildcards.test]["resolution"]["samples_per_rev"],
-        hinge_offsets_m=lambda wildcards: {n: r.get("hinge_offset_m", 0.0) for n, r in test_rotor(wildcards).items()},
+        hinge_offsets_m=lambda wildcards: {n: r.get("hinge_offset_m", 0.0) for n, r in study_rotor(wildcards).items()},
         aircraft=lambda wildcards: wildcards.test,
         segment="test",
         obsset="microphones",
@@ -129,8 +129,8 @@ rule rotor_test_metrics:
         bands=f"{TEST_RESULTS}/metrics_bands.parquet",
         figure=f"{TEST_RESULTS}/spectrum.png",
     params:
-        rotors=lambda wildcards: list(test_rotor(wildcards)),
-        solidity=lambda wildcards: rotor_solidities({"rotors": list(test_rotor(wildcards).values())}),
+        rotors=lambda wildcards: list(study_rotor(wildcards)),
+        solidity=lambda wildcards: rotor_solidities({"rotors": list(study_rotor(wildcards).values())}),
         atmosphere=config["atmosphere"],
         broadband=False,
         absorption=False,
