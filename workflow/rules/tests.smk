@@ -3,41 +3,6 @@
 # own stages then run: loads, wake (+ BVI loads) where models.bvi, acoustics, metrics, and the BVISPL carpet of
 # plane microphone groups where metrics.carpet. Targets: `snakemake -j2 rotor_tests` (every test), or one test
 # by its name (`snakemake -j2 hart_ii_bl`, `snakemake -j2 itr_hover`).
-from pathlib import Path
-
-from nps.config import load_rotor_test
-
-TESTS_DIR = Path("config/tests")
-TEST_RESULTS = f"{RESULTS}/tests/{{test}}"
-TEST_SCRIPT = "../scripts/rotor_test_stage.py"
-try:
-    ROTOR_TESTS = {p.stem: load_rotor_test(p) for p in sorted(TESTS_DIR.glob("*.yaml"))}
-except ConfigError as error:
-    sys.stderr.write(f"NPS rotor-test configuration error: {error}\n")
-    raise SystemExit(1)
-
-
-wildcard_constraints:
-    test="|".join(ROTOR_TESTS) or "^$",
-
-
-def test_variant(test):
-    return "bvi" if ROTOR_TESTS[test]["models"]["bvi"] else "base"
-
-
-def study_rotor(wildcards):
-    rotor = ROTOR_TESTS[wildcards.test]["rotor_config"]
-    return {rotor["name"]: rotor}
-
-
-def test_targets(test):
-    base = f"{RESULTS}/tests/{test}"
-    out = [f"{base}/metrics.parquet"]
-    if ROTOR_TESTS[test]["metrics"]["carpet"]:
-        out.append(f"{base}/carpet.png")
-    return out
-
-
 rule rotor_test:
     input:
         config=str(TESTS_DIR / "{test}.yaml"),
@@ -59,7 +24,7 @@ rule rotor_test_loads:
     output:
         loads=directory(f"{TEST_RESULTS}/loads"),
     params:
-        rotors=study_rotor,
+        rotors=rotor_test_rotors,
         n_psi=lambda wildcards: ROTOR_TESTS[wildcards.test]["resolution"]["n_psi"],
         n_r=lambda wildcards: ROTOR_TESTS[wildcards.test]["resolution"]["n_r"],
         aircraft=lambda wildcards: wildcards.test,
@@ -80,7 +45,7 @@ rule rotor_test_wake:
         wake=directory(f"{TEST_RESULTS}/wake"),
         bvi=directory(f"{TEST_RESULTS}/bvi"),
     params:
-        rotors=study_rotor,
+        rotors=rotor_test_rotors,
         wake=config["wake"],
         revolutions=lambda wildcards: ROTOR_TESTS[wildcards.test]["resolution"]["wake_revolutions"],
         steps_per_rev=lambda wildcards: ROTOR_TESTS[wildcards.test]["resolution"]["n_psi"],
@@ -102,11 +67,11 @@ rule rotor_test_acoustics:
     output:
         signals=directory(f"{TEST_RESULTS}/acoustics"),
     params:
-        rotors=lambda wildcards: list(study_rotor(wildcards)),
+        rotors=lambda wildcards: list(rotor_test_rotors(wildcards)),
         thickness=lambda wildcards: ROTOR_TESTS[wildcards.test]["models"]["thickness"],
         chord_fractions=config["acoustics"]["dual_compact_chord_fractions"],
         samples_per_rev=lambda wildcards: ROTOR_TESTS[wildcards.test]["resolution"]["samples_per_rev"],
-        hinge_offsets_m=lambda wildcards: {n: r.get("hinge_offset_m", 0.0) for n, r in study_rotor(wildcards).items()},
+        hinge_offsets_m=lambda wildcards: {n: r.get("hinge_offset_m", 0.0) for n, r in rotor_test_rotors(wildcards).items()},
         aircraft=lambda wildcards: wildcards.test,
         segment="test",
         obsset="microphones",
@@ -129,8 +94,8 @@ rule rotor_test_metrics:
         bands=f"{TEST_RESULTS}/metrics_bands.parquet",
         figure=f"{TEST_RESULTS}/spectrum.png",
     params:
-        rotors=lambda wildcards: list(study_rotor(wildcards)),
-        solidity=lambda wildcards: rotor_solidities({"rotors": list(study_rotor(wildcards).values())}),
+        rotors=lambda wildcards: list(rotor_test_rotors(wildcards)),
+        solidity=lambda wildcards: rotor_solidities({"rotors": list(rotor_test_rotors(wildcards).values())}),
         atmosphere=config["atmosphere"],
         broadband=False,
         absorption=False,
