@@ -508,6 +508,97 @@ def rotor_loads(
     return _result(disk, controls, solver.x, fields, history, 0)
 
 
+def _trim_targets(geometry: RotorGeometry, op: OperatingPoint, tol_rel: float):
+    """Checked trim targets: (target (T, s·M_x, M_y) in N and N m, tolerances (same units), |T|, hub stiffness)."""
+    check_geometry(geometry)
+    check_operating_point(op, geometry.name)
+    if not 0.0 < tol_rel < 0.1:
+        raise ValueError(f"trim_rotor: tol_rel: expected 0 < tol_rel < 0.1, got {tol_rel!r}")
+    k_hub = hub_flap_stiffness(geometry, op.omega_rad_s, op.density_kg_m3)
+    thrust_ref = abs(op.thrust_N)
+    if thrust_ref == 0.0:
+        raise ValueError(f"rotor '{geometry.name}': operating point thrust_N: expected a non-zero thrust target")
+    if k_hub == 0.0 and (op.roll_moment_Nm != 0.0 or op.pitch_moment_Nm != 0.0):
+        raise ValueError(
+            f"rotor '{geometry.name}': roll_moment_Nm/pitch_moment_Nm: expected 0 for a rotor without hinge offset "
+            f"(it transmits no hub moment), got {op.roll_moment_Nm}, {op.pitch_moment_Nm}"
+        )
+    target = np.array([op.thrust_N, geometry.rotation_sign * op.roll_moment_Nm, op.pitch_moment_Nm])
+    m_abs = tol_rel * thrust_ref * geometry.radius_m
+    tol = np.array([tol_rel * thrust_ref, max(tol_rel * abs(target[1]), m_abs), max(tol_rel * abs(target[2]), m_abs)])
+    return target, tol, thrust_ref, k_hub
+
+
+class _TrimIteration:
+    """The trim's current controls ``ctrl`` = (θ0, θ1c, θ1s) (rad), the disk solution there (``fields``,
+    ``inner`` iterations), the residuals ``res`` to the targets and the history rows."""
+
+    def __init__(self, disk: _Disk, solver: _StateSolver, target: np.ndarray, thrust_ref: float, k_hub: float,
+                 ctrl: np.ndarray):
+        self.disk, self.solver, self.target, self.thrust_ref, self.k_hub = disk, solver, target, thrust_ref, k_hub
+        self.rows: list[dict] = []
+        self.accept(ctrl, self.evaluate(ctrl), 0, 0, "start")
+
+    def evaluate(self, v: np.ndarray):
+        """(fields, inner iterations, residuals) with controls ``v``; the inflow and flapping re-solved."""
+        fields, inner = self.solver.solve(_controls(v))
+        return fields, inner, _outputs(self.disk, fields, self.solver.x, self.thrust_ref, self.k_hub) - self.target
+
+    def accept(self, v: np.ndarray, evaluated, outer: int, step: int, name: str) -> None:
+        """Move to controls ``v`` (evaluated just before) and record the history row."""
+        self.ctrl = v
+        self.fields, self.inner, self.res = evaluated
+        self.rows.append(_history_row(outer, step, name, _controls(v), self.fields, self.solver.x, self.inner, self.disk))
+
+
+def _controls(v: np.ndarray) -> Controls:
+    return Controls(float(v[0]), float(v[1]), float(v[2]))
+
+
+def _control_steps(it: _TrimIteration) -> tuple:
+    """The three trim steps (direction in (θ0, θ1c, θ1s), output index, name, initial slope): θ0 → T, then the
+    swashplate-phased cyclic directions that change one hub moment each (first order) → M_y and → M_x."""
+    sens = np.empty((2, 2))
+    for j in (1, 2):
+        probe = it.ctrl.copy()
+        probe[j] += 0.01
+        sens[:, j - 1] = (it.evaluate(probe)[2][1:] - it.res[1:]) / 0.01
+    mix = np.linalg.inv(sens)
+    return (
+        (np.array([1.0, 0.0, 0.0]), 0, "theta0", None),
+        (np.array([0.0, mix[0, 1], mix[1, 1]]), 2, "cyclic_pitch", 1.0),
+        (np.array([0.0, mix[0, 0], mix[1, 0]]), 1, "cyclic_roll", 1.0),
+    )
+
+
+def _secant_step(it: _TrimIteration, direction, oi: int, name: str, slope0, slopes: dict, tol: np.ndarray,
+                 outer: int, step: int, max_secant: int) -> None:
+    """Secant iteration of output ``oi`` along ``direction`` to a quarter of its tolerance (steps limited to
+    _MAX_CONTROL_STEP_RAD, controls to ±_MAX_CONTROL_RAD); the slope of each output is kept between outer
+    iterations and only updated when the new estimate is consistent."""
+    max_u = _MAX_CONTROL_STEP_RAD / np.abs(direction).max()
+    if abs(it.res[oi]) > 0.25 * tol[oi] and oi not in slopes:
+        if slope0 is None:
+            probe = it.ctrl + 0.01 * direction
+            evaluated = it.evaluate(probe)
+            slope0 = (evaluated[2][oi] - it.res[oi]) / 0.01
+            it.accept(probe, evaluated, outer, step, name)
+        slopes[oi] = slope0
+    for _ in range(max_secant):
+        if abs(it.res[oi]) <= 0.25 * tol[oi]:
+            break
+        slope = slopes[oi]
+        du = float(np.clip(-it.res[oi] / slope, -max_u, max_u))
+        trial = np.clip(it.ctrl + du * direction, -_MAX_CONTROL_RAD, _MAX_CONTROL_RAD)
+        if np.array_equal(trial, it.ctrl):
+            break
+        evaluated = it.evaluate(trial)
+        new_slope = (evaluated[2][oi] - it.res[oi]) / du
+        if math.isfinite(new_slope) and new_slope * slope > 0.0 and abs(new_slope) > 0.05 * abs(slope):
+            slopes[oi] = new_slope
+        it.accept(trial, evaluated, outer, step, name)
+
+
 def trim_rotor(
     geometry: RotorGeometry,
     op: OperatingPoint,
@@ -525,92 +616,32 @@ def trim_rotor(
     flapping re-solved at every evaluation. Converged when all three residuals are within
     tolerance; otherwise :class:`TrimError` with the residuals and the case.
     """
-    check_geometry(geometry)
-    check_operating_point(op, geometry.name)
-    if not 0.0 < tol_rel < 0.1:
-        raise ValueError(f"trim_rotor: tol_rel: expected 0 < tol_rel < 0.1, got {tol_rel!r}")
-    k_hub = hub_flap_stiffness(geometry, op.omega_rad_s, op.density_kg_m3)
-    thrust_ref = abs(op.thrust_N)
-    if thrust_ref == 0.0:
-        raise ValueError(f"rotor '{geometry.name}': operating point thrust_N: expected a non-zero thrust target")
-    if k_hub == 0.0 and (op.roll_moment_Nm != 0.0 or op.pitch_moment_Nm != 0.0):
-        raise ValueError(
-            f"rotor '{geometry.name}': roll_moment_Nm/pitch_moment_Nm: expected 0 for a rotor without hinge offset "
-            f"(it transmits no hub moment), got {op.roll_moment_Nm}, {op.pitch_moment_Nm}"
-        )
-    s = geometry.rotation_sign
-    target = np.array([op.thrust_N, s * op.roll_moment_Nm, op.pitch_moment_Nm])
-    m_abs = tol_rel * thrust_ref * geometry.radius_m
-    tol = np.array([tol_rel * thrust_ref, max(tol_rel * abs(target[1]), m_abs), max(tol_rel * abs(target[2]), m_abs)])
-
+    target, tol, thrust_ref, k_hub = _trim_targets(geometry, op, tol_rel)
     disk = _Disk(geometry, op, grid, tip_loss)
     x0, theta0 = _initial_state(geometry, op, op.thrust_N)
-    solver = _StateSolver(disk, x0)
-    ctrl = np.array([theta0, 0.0, 0.0])  # θ0, θ1c, θ1s
-
-    def controls_of(v):
-        return Controls(float(v[0]), float(v[1]), float(v[2]))
-
-    def evaluate(v):
-        fields, inner = solver.solve(controls_of(v))
-        return fields, inner, _outputs(disk, fields, solver.x, thrust_ref, k_hub) - target
-
-    rows = []
-    fields, inner, res = evaluate(ctrl)
-    rows.append(_history_row(0, 0, "start", controls_of(ctrl), fields, solver.x, inner, disk))
-    # swashplate phasing: cyclic directions that change one hub moment each (first order)
-    sens = np.empty((2, 2))
-    for j in (1, 2):
-        probe = ctrl.copy()
-        probe[j] += 0.01
-        sens[:, j - 1] = (evaluate(probe)[2][1:] - res[1:]) / 0.01
-    mix = np.linalg.inv(sens)
-    steps = (  # (direction in (θ0, θ1c, θ1s), output index, name, initial slope)
-        (np.array([1.0, 0.0, 0.0]), 0, "theta0", None),
-        (np.array([0.0, mix[0, 1], mix[1, 1]]), 2, "cyclic_pitch", 1.0),
-        (np.array([0.0, mix[0, 0], mix[1, 0]]), 1, "cyclic_roll", 1.0),
-    )
-    slopes = {}
+    it = _TrimIteration(disk, _StateSolver(disk, x0), target, thrust_ref, k_hub, np.array([theta0, 0.0, 0.0]))
+    steps = _control_steps(it)
+    slopes: dict = {}
     outer = 0
-    converged = bool(np.all(np.abs(res) <= tol))
+    converged = bool(np.all(np.abs(it.res) <= tol))
     while not converged and outer < max_outer:
         outer += 1
         for step, (direction, oi, name, slope0) in enumerate(steps, start=1):
-            max_u = _MAX_CONTROL_STEP_RAD / np.abs(direction).max()
-            if abs(res[oi]) > 0.25 * tol[oi] and oi not in slopes:
-                if slope0 is None:
-                    probe = ctrl + 0.01 * direction
-                    f_p, inner_p, res_p = evaluate(probe)
-                    slope0 = (res_p[oi] - res[oi]) / 0.01
-                    ctrl, fields, inner, res = probe, f_p, inner_p, res_p
-                    rows.append(_history_row(outer, step, name, controls_of(ctrl), fields, solver.x, inner, disk))
-                slopes[oi] = slope0
-            for _ in range(max_secant):
-                if abs(res[oi]) <= 0.25 * tol[oi]:
-                    break
-                slope = slopes[oi]
-                du = float(np.clip(-res[oi] / slope, -max_u, max_u))
-                trial = np.clip(ctrl + du * direction, -_MAX_CONTROL_RAD, _MAX_CONTROL_RAD)
-                if np.array_equal(trial, ctrl):
-                    break
-                f_t, inner_t, res_t = evaluate(trial)
-                new_slope = (res_t[oi] - res[oi]) / du
-                if math.isfinite(new_slope) and new_slope * slope > 0.0 and abs(new_slope) > 0.05 * abs(slope):
-                    slopes[oi] = new_slope
-                ctrl, fields, inner, res = trial, f_t, inner_t, res_t
-                rows.append(_history_row(outer, step, name, controls_of(ctrl), fields, solver.x, inner, disk))
-            if np.all(np.abs(res) <= tol):
+            _secant_step(it, direction, oi, name, slope0, slopes, tol, outer, step, max_secant)
+            if np.all(np.abs(it.res) <= tol):
                 converged = True
                 break
     if not converged:
         names = ("thrust_N", "roll_moment_Nm", "pitch_moment_Nm")
-        detail = ", ".join(f"{n}: residual {r:.4g} (tol {t:.3g})" for n, r, t in zip(names, res * np.array([1, s, 1]), tol))
+        residuals = it.res * np.array([1, geometry.rotation_sign, 1])
+        detail = ", ".join(f"{n}: residual {r:.4g} (tol {t:.3g})" for n, r, t in zip(names, residuals, tol))
+        ctrl = it.ctrl
         raise TrimError(
             f"rotor '{geometry.name}': trim did not converge in {max_outer} outer iterations; {detail}; "
             f"controls θ0 {ctrl[0]:.4f}, θ1c {ctrl[1]:.4f}, θ1s {ctrl[2]:.4f} rad; targets T {op.thrust_N:.6g} N, "
             f"M_x {op.roll_moment_Nm:.6g} N m, M_y {op.pitch_moment_Nm:.6g} N m; {_case(disk)}"
         )
-    return _result(disk, controls_of(ctrl), solver.x, fields, _history_frame(rows), outer)
+    return _result(disk, _controls(it.ctrl), it.solver.x, it.fields, _history_frame(it.rows), outer)
 
 
 def _history_row(outer, step, name, c: Controls, fields, x, inner, disk: _Disk) -> dict:

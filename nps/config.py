@@ -274,6 +274,27 @@ class Campaign:
         return self._listed(self.config["figures"][f"{kind}_segments"])
 
 
+def _footprint_problems(config: dict, mission: dict, all_ids: list[str]) -> list[tuple[str, str]]:
+    """Cross references of the ``footprint`` and ``certification`` sections (docs/footprint.md)."""
+    problems = []
+    footprint = config.get("footprint")
+    if footprint is not None:
+        spec = config["observer_sets"].get(footprint["source_set"])
+        if spec is None or spec["kind"] != "hemisphere" or not spec.get("moving", True):
+            problems.append(("footprint.source_set", f"expected a moving hemisphere of observer_sets, got '{footprint['source_set']}'"))
+        for index, leg in enumerate(mission.get("profile", [])):
+            if leg["segment"] not in all_ids:
+                problems.append((f"mission profile[{index}].segment", f"expected one of {all_ids}, got '{leg['segment']}'"))
+    certification = config.get("certification")
+    if certification is not None:
+        if footprint is None:
+            problems.append(("certification", "needs the footprint section (its source_set and ground)"))
+        for procedure, segment_id in certification["segments"].items():
+            if segment_id not in all_ids:
+                problems.append((f"certification.segments.{procedure}", f"expected one of {all_ids}, got '{segment_id}'"))
+    return problems
+
+
 def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", root: str | Path = ".") -> Campaign:
     """Validate the campaign configuration and every file it names, with cross references."""
     validate(config, "config", config_file)
@@ -309,6 +330,7 @@ def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", 
         for index, segment_id in enumerate(obs.get("segments", [])):
             if segment_id not in all_ids:
                 problems.append((f"observer_sets.{set_name}.segments[{index}]", f"expected one of {all_ids}, got '{segment_id}'"))
+    problems += _footprint_problems(config, mission, all_ids)
     _raise(config_file, problems)
     for index, segment in enumerate(mission["segments"]):
         if segment["id"] not in segments:

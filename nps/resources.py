@@ -23,8 +23,6 @@ import math
 import os
 from typing import Mapping
 
-from nps.bet import DISK_COLUMNS
-from nps.wake import WAKE_COLUMNS
 
 INTERPRETER_BYTES = 250e6  # Python + numpy/pandas/pyarrow/numba + nps imported: 210-250 MB measured
 LOADS_FIXED_BYTES = 12e6
@@ -40,8 +38,12 @@ HSI_BYTES_PER_SAMPLE = 160.0  # per rotor sample: every rotor's signals are read
 METRICS_FIXED_BYTES = 60e6
 METRICS_BYTES_PER_SAMPLE = 140.0  # per rotor sample of the radiated signals
 METRICS_BYTES_PER_HSI_SAMPLE = 80.0  # per rotor sample of the HSI signals, when they enter
-DISK_TABLE_BYTES_PER_STATION = 8.0 * len(DISK_COLUMNS)  # a held loads/BVI disk table
-WAKE_TABLE_BYTES_PER_ROW = 8.0 * len(WAKE_COLUMNS)  # a held wake table
+# column counts of nps.bet.DISK_COLUMNS and nps.wake.WAKE_COLUMNS, written out so that Snakemake, which evaluates
+# the memory requests, need not import the numba modules (tests/unit/test_resources.py checks them)
+DISK_TABLE_COLUMNS = 16
+WAKE_TABLE_COLUMNS = 14
+DISK_TABLE_BYTES_PER_STATION = 8.0 * DISK_TABLE_COLUMNS  # a held loads/BVI disk table
+WAKE_TABLE_BYTES_PER_ROW = 8.0 * WAKE_TABLE_COLUMNS  # a held wake table
 MEM_MB_MARGIN = 1.25
 
 
@@ -164,3 +166,80 @@ def check_memory(estimate_bytes: float, what: str, available: float | None = Non
 def mem_mb(estimate_bytes: float) -> int:
     """Snakemake ``resources: mem_mb`` for a job: (interpreter + estimate) × 1.25, in MB, rounded up."""
     return int(math.ceil((INTERPRETER_BYTES + float(estimate_bytes)) * MEM_MB_MARGIN / 1e6))
+
+
+# ---- Cluster requests of every workflow job (profiles/slurm): threads, mem_mb and runtime ----
+# mem_mb and runtime grow linearly with Snakemake's ``attempt`` (the profile's ``retries``
+# resubmit a job killed for memory or time with 2x, then 3x its request).
+
+MAX_THREADS = 4
+OBSERVER_BLOCK = 16  # nps.acoustics.OBSERVER_BLOCK (not imported: the DAG build must not load numba)
+# figure stages that hold the same signals as a metrics job of their observer set
+SIGNAL_FIGURES = ("hsi_figure", "bvi_hotspot", "rotor_maps")
+# stage -> (minutes at the bundled resolution, work elements it scales with or None); >= 10x the
+# longest job measured there on a loaded 2-core machine
+RUNTIME_MIN = {
+    "trim": (5, None), "loads": (5, "disk"), "observers": (5, None), "wake": (15, "wake"),
+    "acoustics": (15, "signal"), "hsi": (15, "signal"), "metrics": (10, "signal"),
+    "hsi_figure": (5, "signal"), "rotor_figures": (10, "disk"), "bvi_hotspot": (5, "signal"),
+    "rotor_maps": (5, "signal"), "study_maps": (5, None), "summary": (5, None),
+}
+BUNDLED_RESOLUTION = {"n_psi": 360, "n_r": 50, "wake_revolutions": 4, "samples_per_rev": 1024}
+BUNDLED_OBSERVERS, BUNDLED_ROTORS = 360, 2
+
+
+def _attempt(attempt: int) -> int:
+    return _positive_int("attempt", attempt)
+
+
+def _work_elements(kind: str, resolution: Mapping, n_observers: int, n_rotors: int) -> float:
+    """disk: rotors·n_psi·n_r; wake: rotors·wake_revolutions·n_psi²; signal: rotors·observers·samples_per_rev."""
+    if kind == "disk":
+        return n_rotors * resolution["n_psi"] * resolution["n_r"]
+    if kind == "wake":
+        return n_rotors * float(resolution["wake_revolutions"]) * resolution["n_psi"] ** 2
+    return n_rotors * n_observers * resolution["samples_per_rev"]
+
+
+def job_mem_mb(stage: str, resolution: Mapping, n_observers: int = 1, n_rotors: int = 1, hsi: bool = False,
+               attempt: int = 1) -> int:
+    """``resources: mem_mb`` of one job of ``stage``: :func:`mem_mb` of its :func:`estimate_bytes`
+    (figure stages holding signals: the metrics estimate; other stages: the interpreter alone),
+    times the attempt."""
+    if stage not in RUNTIME_MIN:
+        raise ValueError(f"stage: expected one of {', '.join(RUNTIME_MIN)}, got {stage!r}")
+    if stage in ("loads", "wake", "acoustics", "hsi", "metrics"):
+        estimate = estimate_bytes(stage, resolution, n_observers, n_rotors, hsi)
+    elif stage in SIGNAL_FIGURES:
+        estimate = estimate_bytes("metrics", resolution, max(1, n_observers), n_rotors, hsi)
+    else:
+        estimate = 0.0
+    return _attempt(attempt) * mem_mb(estimate)
+
+
+def job_runtime_min(stage: str, resolution: Mapping, n_observers: int = 1, n_rotors: int = 1, attempt: int = 1) -> int:
+    """``resources: runtime`` (minutes) of one job of ``stage``: :data:`RUNTIME_MIN` scaled by the
+    job's work elements over the bundled resolution's (never below), times the attempt."""
+    if stage not in RUNTIME_MIN:
+        raise ValueError(f"stage: expected one of {', '.join(RUNTIME_MIN)}, got {stage!r}")
+    minutes, kind = RUNTIME_MIN[stage]
+    scale = 1.0
+    if kind is not None:
+        scale = max(1.0, _work_elements(kind, resolution, n_observers, n_rotors)
+                    / _work_elements(kind, BUNDLED_RESOLUTION, BUNDLED_OBSERVERS, BUNDLED_ROTORS))
+    return _attempt(attempt) * math.ceil(minutes * scale)
+
+
+def job_threads(stage: str, n_observers: int = 1) -> int:
+    """``threads`` of one job of ``stage``: the numba-parallel stages only, as many as their loops
+    use — the wake (prange over azimuth rows and points) MAX_THREADS, the F1A radiation one per
+    block of OBSERVER_BLOCK observers, HSI one per observer, up to MAX_THREADS; others 1."""
+    if stage not in RUNTIME_MIN:
+        raise ValueError(f"stage: expected one of {', '.join(RUNTIME_MIN)}, got {stage!r}")
+    if stage == "wake":
+        return MAX_THREADS
+    if stage == "acoustics":
+        return max(1, min(MAX_THREADS, math.ceil(n_observers / OBSERVER_BLOCK)))
+    if stage == "hsi":
+        return max(1, min(MAX_THREADS, n_observers))
+    return 1

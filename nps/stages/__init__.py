@@ -23,8 +23,8 @@ from typing import Callable
 # ``rotor_test`` and ``carpet`` belong to the rotor-test workflow, workflow/rules/tests.smk);
 # stage X is ``nps.stages.X.run``
 STAGES = ("trim", "loads", "wake", "observers", "acoustics", "hsi", "metrics",
-          "rotor_figures", "hsi_figure", "study_maps", "rotor_maps", "bvi_hotspot", "summary", "radiate",
-          "rotor_test", "carpet")
+          "rotor_figures", "hsi_figure", "study_maps", "rotor_maps", "bvi_hotspot", "summary",
+          "source_hemisphere", "footprint", "certification", "radiate", "rotor_test", "carpet")
 
 
 def stage_module(stage: str) -> str:

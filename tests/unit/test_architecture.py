@@ -14,7 +14,8 @@ MODULES = sorted(
     for p in PACKAGE_DIR.rglob("*.py")
 )
 PHYSICS = ("acoustics", "atmosphere", "bet", "broadband", "bvi", "frames", "hsi", "metrics", "observers", "rotor",
-           "sources", "signals", "spectra", "trim", "wake", "jit", "airfoils", "blade", "control", "rotor_test")
+           "sources", "signals", "spectra", "trim", "wake", "jit", "airfoils", "blade", "control", "propagation",
+           "trajectory", "certification", "footprint", "source_hemisphere", "rotor_test")
 
 
 def _module_level_imports(module: str) -> set[str]:

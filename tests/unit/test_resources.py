@@ -87,3 +87,13 @@ def test_bad_resolution_names_the_field():
     with pytest.raises(ValueError, match="wake_revolutions: expected a number > 0"):
         res.wake_bvi_bytes(360, 50, -1.0)
     assert res.available_bytes() > 0
+
+
+def test_table_column_counts_match_the_artifacts():
+    """nps.resources writes the disk and wake column counts out (no numba import in Snakemake); they must match."""
+    from nps import resources
+    from nps.bet import DISK_COLUMNS
+    from nps.wake import WAKE_COLUMNS
+
+    assert resources.DISK_TABLE_COLUMNS == len(DISK_COLUMNS)
+    assert resources.WAKE_TABLE_COLUMNS == len(WAKE_COLUMNS)

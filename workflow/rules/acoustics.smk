@@ -19,9 +19,10 @@ rule observers:
     benchmark:
         bench_path("observers", "{aircraft}/{segment}/{obsset}")
     threads: 1
+    group: "prepare"
     resources:
-        mem_mb=500,
-        runtime=5,
+        mem_mb=job_mem_mb("observers"),
+        runtime=job_runtime("observers"),
     script:
         STAGE_SCRIPT
 
@@ -46,10 +47,11 @@ rule acoustics:
         log_path("acoustics", "{aircraft}/{segment}/{obsset}_{variant}"),
     benchmark:
         bench_path("acoustics", "{aircraft}/{segment}/{obsset}_{variant}")
-    threads: 1
+    threads: job_threads("acoustics")
+    group: "radiate"
     resources:
-        mem_mb=2000,
-        runtime=10,
+        mem_mb=job_mem_mb("acoustics"),
+        runtime=job_runtime("acoustics"),
     script:
         STAGE_SCRIPT
 

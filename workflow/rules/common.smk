@@ -7,6 +7,7 @@ from pathlib import Path
 from nps.config import ConfigError, load_campaign, load_rotor_test
 from nps.stages.code import stage_digest
 from nps.metrics import rotor_solidities
+import nps.resources as nps_resources
 
 
 
@@ -126,6 +127,29 @@ def rotor_figure_inputs(wildcards):
     return inputs
 
 
+# ---- Cluster requests of every job (nps.resources): threads, and mem_mb / runtime from the resolution ----
+# ---- in config, the job's rotors and observer set, growing with the attempt (profiles/slurm retries). ----
+def _job_load(wildcards):
+    """(observers, rotors, HSI signals read) of a job; jobs without an observer set read the hemisphere's."""
+    obsset = wildcards.get("obsset", "hemisphere")
+    spec = config["observer_sets"].get(obsset)
+    n_observers = nps_resources.observer_count(spec) if spec else 1
+    n_rotors = len(rotor_names(wildcards.aircraft))
+    return n_observers, n_rotors, wildcards.get("segment") in CAMPAIGN.hsi_segments()
+
+
+def job_threads(stage):
+    return lambda wildcards: nps_resources.job_threads(stage, _job_load(wildcards)[0])
+
+
+def job_mem_mb(stage):
+    return lambda wildcards, attempt: nps_resources.job_mem_mb(stage, config["resolution"], *_job_load(wildcards), attempt)
+
+
+def job_runtime(stage):
+    return lambda wildcards, attempt: nps_resources.job_runtime_min(stage, config["resolution"], *_job_load(wildcards)[:2], attempt)
+
+
 # used by study.smk
 def summary_inputs(wildcards):
     """Per segment: trim, loads directory and hemisphere metrics of each variant; the wake directories are
@@ -137,6 +161,34 @@ def summary_inputs(wildcards):
         inputs.update({f"metrics_{s}_{v}": f"{base}/{s}/metrics/hemisphere_{v}.parquet" for v in CAMPAIGN.variants(s)})
     inputs.update({f"wake_{s}": f"{base}/{s}/wake" for s in CAMPAIGN.bvi_segments()})
     return inputs
+
+
+# used by footprint.smk and certification.smk
+def source_set():
+    return config["footprint"]["source_set"]
+
+
+def product_variant(segment):
+    """The load variant of the product: with BVI wherever it is computed (as the summary)."""
+    return CAMPAIGN.variants(segment)[-1]
+
+
+def source_hemisphere_inputs(wildcards):
+    variant = product_variant(wildcards.segment)
+    base = f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}"
+    inputs = {"signals": f"{base}/acoustics/{source_set()}_{variant}", "trim": f"{base}/trim.parquet",
+              "observers": f"{base}/observers/{source_set()}.parquet"}
+    if wildcards.segment in CAMPAIGN.hsi_segments():
+        inputs["hsi"] = f"{base}/hsi/{source_set()}_{variant}"
+    return inputs
+
+
+def profile_segments():
+    return list(dict.fromkeys(leg["segment"] for leg in CAMPAIGN.mission.get("profile", [])))
+
+
+def footprint_inputs(wildcards):
+    return {f"hemisphere_{s}": f"{RESULTS}/{wildcards.aircraft}/{s}/source_hemisphere.parquet" for s in profile_segments()}
 
 
 # used by tests.smk: the rotor test cases of config/tests/ (nps.rotor_test), validated before any job

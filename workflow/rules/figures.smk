@@ -28,9 +28,10 @@ rule rotor_figures:
     benchmark:
         bench_path("rotor_figures")
     threads: 1
+    group: "figures"
     resources:
-        mem_mb=1000,
-        runtime=10,
+        mem_mb=job_mem_mb("rotor_figures"),
+        runtime=job_runtime("rotor_figures"),
     script:
         STAGE_SCRIPT
 

@@ -18,10 +18,11 @@ rule hsi:
         log_path("hsi", "{aircraft}/{segment}/{obsset}_{variant}"),
     benchmark:
         bench_path("hsi", "{aircraft}/{segment}/{obsset}_{variant}")
-    threads: 1
+    threads: job_threads("hsi")
+    group: "radiate"
     resources:
-        mem_mb=2000,
-        runtime=10,
+        mem_mb=job_mem_mb("hsi"),
+        runtime=job_runtime("hsi"),
     script:
         STAGE_SCRIPT
 
@@ -48,9 +49,10 @@ rule hsi_figure:
     benchmark:
         bench_path("hsi_figure", "{aircraft}/{segment}/{obsset}_{variant}")
     threads: 1
+    group: "radiate"
     resources:
-        mem_mb=800,
-        runtime=5,
+        mem_mb=job_mem_mb("hsi_figure"),
+        runtime=job_runtime("hsi_figure"),
     script:
         STAGE_SCRIPT
 

@@ -18,9 +18,10 @@ rule loads:
     benchmark:
         bench_path("loads")
     threads: 1
+    group: "prepare"
     resources:
-        mem_mb=800,
-        runtime=5,
+        mem_mb=job_mem_mb("loads"),
+        runtime=job_runtime("loads"),
     script:
         STAGE_SCRIPT
 

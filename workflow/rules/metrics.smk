@@ -30,9 +30,10 @@ rule metrics:
     benchmark:
         bench_path("metrics", "{aircraft}/{segment}/{obsset}_{variant}")
     threads: 1
+    group: "radiate"
     resources:
-        mem_mb=1500,
-        runtime=10,
+        mem_mb=job_mem_mb("metrics"),
+        runtime=job_runtime("metrics"),
     script:
         STAGE_SCRIPT
 

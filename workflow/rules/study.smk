@@ -25,9 +25,10 @@ rule study_maps:
     benchmark:
         bench_path("study_maps", "{aircraft}")
     threads: 1
+    group: "figures"
     resources:
-        mem_mb=800,
-        runtime=5,
+        mem_mb=job_mem_mb("study_maps"),
+        runtime=job_runtime("study_maps"),
     script:
         STAGE_SCRIPT
 
@@ -53,9 +54,10 @@ rule rotor_maps:
     benchmark:
         bench_path("rotor_maps", "{aircraft}/{rotor}")
     threads: 1
+    group: "figures"
     resources:
-        mem_mb=1500,
-        runtime=5,
+        mem_mb=job_mem_mb("rotor_maps"),
+        runtime=job_runtime("rotor_maps"),
     script:
         STAGE_SCRIPT
 
@@ -92,9 +94,10 @@ rule bvi_hotspot:
     benchmark:
         bench_path("bvi_hotspot")
     threads: 1
+    group: "figures"
     resources:
-        mem_mb=1500,
-        runtime=5,
+        mem_mb=job_mem_mb("bvi_hotspot"),
+        runtime=job_runtime("bvi_hotspot"),
     script:
         STAGE_SCRIPT
 
@@ -122,9 +125,10 @@ rule summary:
     benchmark:
         bench_path("summary", "{aircraft}")
     threads: 1
+    group: "figures"
     resources:
-        mem_mb=800,
-        runtime=5,
+        mem_mb=job_mem_mb("summary"),
+        runtime=job_runtime("summary"),
     script:
         STAGE_SCRIPT
 

@@ -17,9 +17,10 @@ rule trim:
     benchmark:
         bench_path("trim")
     threads: 1
+    group: "prepare"
     resources:
-        mem_mb=500,
-        runtime=5,
+        mem_mb=job_mem_mb("trim"),
+        runtime=job_runtime("trim"),
     script:
         STAGE_SCRIPT
 

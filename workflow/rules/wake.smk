@@ -23,10 +23,10 @@ rule wake:
         log_path("wake"),
     benchmark:
         bench_path("wake")
-    threads: 1
+    threads: job_threads("wake")
     resources:
-        mem_mb=1500,
-        runtime=10,
+        mem_mb=job_mem_mb("wake"),
+        runtime=job_runtime("wake"),
     script:
         STAGE_SCRIPT
 

@@ -1,0 +1,35 @@
+"""Stage ``source_hemisphere``: the source-hemisphere product of an aircraft in one segment.
+
+Per-observer 1/3-octave band levels (10 Hz–10 kHz) per source on a far-field hemisphere moving
+with the aircraft, without air absorption, referred to the reference radius by spherical spreading
+(nps.source_hemisphere: schema and why far field).
+
+inputs: ``signals`` (acoustics directory of the far-field hemisphere set), optional ``hsi`` (its HSI
+directory: the HSI-processed tonal total replaces thickness + loading), ``trim``, ``observers``.
+outputs: ``hemisphere`` (Parquet, one row per observer × source × band).
+params: ``rotors``, ``solidity`` (rotor → σ), ``broadband`` (bool), ``reference_radius_m``,
+``aircraft``, ``segment``, ``obsset``, ``variant``.
+"""
+
+from __future__ import annotations
+
+from nps.io import read_signals, read_table, write_table
+from nps.source_hemisphere import source_hemisphere_table
+
+
+def run(inputs: dict, outputs: dict, params: dict) -> str:
+    rotors = list(params["rotors"])
+    signals = read_signals(inputs["signals"], rotors)
+    hsi = read_signals(inputs["hsi"], rotors) if "hsi" in inputs else None
+    table = source_hemisphere_table(signals, read_table(inputs["observers"]), read_table(inputs["trim"]),
+                                    params["solidity"], hsi, bool(params["broadband"]),
+                                    float(params["reference_radius_m"]))
+    meta = {"aircraft": params["aircraft"], "segment": params["segment"], "obsset": params["obsset"],
+            "variant": params["variant"], "broadband": bool(params["broadband"]), "hsi": hsi is not None,
+            "reference_radius_m": float(params["reference_radius_m"]), "absorption": False,
+            "inputs": [str(inputs["signals"]), str(inputs["trim"]), str(inputs["observers"])]}
+    write_table(table, outputs["hemisphere"], stage="source_hemisphere", metadata=meta)
+    total = table[table["source"] == "total"]
+    return (f"{total['observer'].nunique()} observers x {total['band'].nunique()} bands, sources "
+            f"{sorted(table['source'].unique())}; total band levels {total['level_db'].min():.1f}..{total['level_db'].max():.1f} dB "
+            f"at {table['radius_m'].iloc[0]:.2f} m")

@@ -1,0 +1,82 @@
+# Source hemispheres as a product (nps.stages.source_hemisphere, per aircraft x segment: the far-field
+# `footprint.source_set` hemisphere's unabsorbed band levels referred to 10 R) and the mission's ground
+# footprint (nps.stages.footprint, per aircraft: the mission profile flown with those hemispheres over the
+# ground grid and the named microphones). Scheduled when config has `footprint` and the mission a profile.
+
+
+rule source_hemisphere:
+    input:
+        unpack(source_hemisphere_inputs),
+    output:
+        hemisphere=f"{BASE}/source_hemisphere.parquet",
+    params:
+        rotors=lambda wildcards: rotor_names(wildcards.aircraft),
+        solidity=lambda wildcards: rotor_solidities(aircraft_config(wildcards)),
+        broadband=config["models"]["broadband"],
+        reference_radius_m=lambda wildcards: config["footprint"].get("reference_radius_R", 10.0) * aircraft_config(wildcards)["rotors"][0]["radius_m"],
+        obsset=lambda wildcards: source_set(),
+        variant=lambda wildcards: product_variant(wildcards.segment),
+        code=code("source_hemisphere"),
+    log:
+        log_path("source_hemisphere"),
+    benchmark:
+        bench_path("source_hemisphere")
+    threads: 1
+    resources:
+        mem_mb=1500,
+        runtime=10,
+    script:
+        STAGE_SCRIPT
+
+
+rule footprint:
+    input:
+        unpack(footprint_inputs),
+    output:
+        grid=f"{RESULTS}/{{aircraft}}/footprint/grid.parquet",
+        microphones=f"{RESULTS}/{{aircraft}}/footprint/microphones.parquet",
+        histories=f"{RESULTS}/{{aircraft}}/footprint/histories.parquet",
+        areas=f"{RESULTS}/{{aircraft}}/footprint/areas.parquet",
+        areas_csv=report(
+            f"{RESULTS}/{{aircraft}}/footprint/areas.csv",
+            caption="../report/footprint_areas.rst",
+            category="{aircraft}",
+            subcategory="Footprint and certification",
+            labels={"aircraft": "{aircraft}", "figure": "contour areas (table)"},
+        ),
+        sel_figure=report(
+            f"{RESULTS}/{{aircraft}}/footprint/sel.png",
+            caption="../report/footprint_contours.rst",
+            category="{aircraft}",
+            subcategory="Footprint and certification",
+            labels={"aircraft": "{aircraft}", "figure": "SEL footprint"},
+        ),
+        lamax_figure=report(
+            f"{RESULTS}/{{aircraft}}/footprint/lamax.png",
+            caption="../report/footprint_contours.rst",
+            category="{aircraft}",
+            subcategory="Footprint and certification",
+            labels={"aircraft": "{aircraft}", "figure": "L_Amax footprint"},
+        ),
+    params:
+        mission=CAMPAIGN.mission,
+        grid=lambda wildcards: config["footprint"]["grid"],
+        microphones=lambda wildcards: config["footprint"].get("microphones", {}),
+        ground=lambda wildcards: config["footprint"].get("ground", {}),
+        atmosphere=config["atmosphere"],
+        absorption=config["models"]["absorption"],
+        code=code("footprint"),
+    log:
+        log_path("footprint", "{aircraft}"),
+    benchmark:
+        bench_path("footprint", "{aircraft}")
+    threads: 2
+    resources:
+        mem_mb=3000,
+        runtime=15,
+    script:
+        STAGE_SCRIPT
+
+
+if "footprint" in config and profile_segments():
+    ALL_TARGETS.extend(f"{RESULTS}/{a}/footprint/grid.parquet" for a in CAMPAIGN.aircraft)
