@@ -14,6 +14,9 @@ rule rotor_test:
     log:
         f"{RESULTS}/logs/rotor_test/{{test}}.log",
     threads: 1
+    resources:
+        mem_mb=500,
+        runtime=5,
     script:
         STAGE_SCRIPT
 
@@ -33,6 +36,9 @@ rule rotor_test_loads:
     log:
         f"{RESULTS}/logs/rotor_test_loads/{{test}}.log",
     threads: 1
+    resources:
+        mem_mb=800,
+        runtime=5,
     script:
         TEST_SCRIPT
 
@@ -55,6 +61,9 @@ rule rotor_test_wake:
     log:
         f"{RESULTS}/logs/rotor_test_wake/{{test}}.log",
     threads: 1
+    resources:
+        mem_mb=2000,
+        runtime=10,
     script:
         TEST_SCRIPT
 
@@ -80,6 +89,9 @@ rule rotor_test_acoustics:
     log:
         f"{RESULTS}/logs/rotor_test_acoustics/{{test}}.log",
     threads: 1
+    resources:
+        mem_mb=2000,
+        runtime=15,
     script:
         TEST_SCRIPT
 
@@ -108,6 +120,9 @@ rule rotor_test_metrics:
     log:
         f"{RESULTS}/logs/rotor_test_metrics/{{test}}.log",
     threads: 1
+    resources:
+        mem_mb=1500,
+        runtime=10,
     script:
         TEST_SCRIPT
 
@@ -127,6 +142,9 @@ rule rotor_test_carpet:
     log:
         f"{RESULTS}/logs/rotor_test_carpet/{{test}}.log",
     threads: 1
+    resources:
+        mem_mb=800,
+        runtime=5,
     script:
         TEST_SCRIPT
 
