@@ -389,6 +389,9 @@ def load_rotor_test(path: str | Path) -> dict:
         rotor = rotor_for_test(aircraft_rotor(load_aircraft(rotor_file), ref["name"], rotor_file), data["condition"])
     _raise(rotor_file, [(f"rotor '{rotor['name']}'{field[len('rotor'):]}", what)
                         for field, what in _rotor_sections(rotor, "rotor", rotor_file.parent)])
+    mode = rotor.get("control", "collective")
+    if mode != "fixed" and "thrust_N" not in data["condition"]:
+        _raise(path, [("condition.thrust_N", f"required with control '{mode}' (the thrust target)")])
     try:
         positions, groups = microphone_positions(data["microphones"], base)
     except ObserverError as exc:

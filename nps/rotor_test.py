@@ -144,8 +144,6 @@ def rotor_test_trim(rotor: Mapping, condition: Mapping, grid: DiskGrid) -> pd.Da
     op = OperatingPoint(omega, float(v_h[0]), float(v_h[1]), float(-v_h[2]), float(atm["density_kg_m3"]),
                         float(atm["speed_of_sound_mps"]), float(condition.get("thrust_N", 0.0)),
                         float(condition.get("roll_moment_Nm", 0.0)), float(condition.get("pitch_moment_Nm", 0.0)))
-    if control.mode != "fixed" and "thrust_N" not in condition:
-        raise ValueError(f"condition thrust_N: required with control '{control.mode}'")
     solution = solve_rotor(geometry, op, grid, control, tip_loss=bool(rotor.get("tip_loss", True)))
     op, totals = solution.operating_point, solution.result.totals
     mu = math.hypot(op.mu_x, op.mu_y)

@@ -39,6 +39,8 @@ def _test_from_options(args) -> dict:
     if args.arc_radius_m is not None:
         mics.append({"kind": "arc", "radius_m": args.arc_radius_m, "angles_deg": args.arc_angles_deg or [],
                      "plane": args.arc_plane})
+    if not mics:
+        raise ValueError("microphones: give at least one of --mic, --mic-file, --arc-radius-m")
     resolution = {"n_psi": args.n_psi, "n_r": args.n_r, "samples_per_rev": args.samples_per_rev}
     return {"name": "rotor", "description": "python -m nps rotor", "rotor": rotor, "condition": condition,
             "microphones": mics, "resolution": resolution}

@@ -92,6 +92,9 @@ def test_missing_microphone_file_and_bad_microphone_entry(tmp_path):
         load_rotor_test(write_test(tmp_path, microphones=[{"kind": "file", "path": "nowhere.csv"}]))
     with pytest.raises(ConfigError, match=r"case\.yaml: microphones\[0\]\.radius_m: required field is missing"):
         load_rotor_test(write_test(tmp_path, microphones=[{"kind": "arc", "angles_deg": [0.0], "plane": "xz"}]))
+    with pytest.raises(ConfigError, match=r"case\.yaml: condition\.thrust_N: required with control 'rpm'"):
+        load_rotor_test(write_test(tmp_path, condition={"rpm": 3000.0, "control": "rpm", "pitch_deg": 8.0,
+                                                        "atmosphere": ATMOSPHERE}))
 
 
 def test_missing_airfoil_table_names_the_rotor_file_and_field(tmp_path):
@@ -143,3 +146,21 @@ def test_bundled_test_studies_validate():
     assert tests["hart_ii_bl"]["microphones_T"].shape == (221, 3)
     assert np.all(tests["hart_ii_bl"]["microphones_T"][:, 2] == -2.215)
     assert tests["itr_hover"]["rotor_config"]["control"] == "fixed"
+
+
+def test_rpm_test_solves_the_speed_once_for_every_stage(tmp_path):
+    """control rpm in a test: the set-up solves Ω to the thrust target (0.1 %) and writes it; the loads stage
+    at that Ω meets the target and reports the same Ω, bit for bit."""
+    from nps.stages import loads as loads_stage
+    from nps.stages import rotor_test as setup_stage
+
+    condition = {"rpm": 3000.0, "control": "rpm", "pitch_deg": 10.0, "thrust_N": 40.0, "atmosphere": ATMOSPHERE}
+    path = write_test(tmp_path, condition=condition)
+    setup_stage.run({"config": path}, {"trim": tmp_path / "trim.parquet", "observers": tmp_path / "mics.parquet"}, {})
+    row = read_table(tmp_path / "trim.parquet").iloc[0]
+    assert row["thrust_N"] == 40.0 and row["omega_rad_s"] != 3000.0 * math.pi / 30.0
+    test = load_rotor_test(path)
+    loads_stage.run({"trim": tmp_path / "trim.parquet"}, {"loads": tmp_path / "loads"},
+                    {"rotors": {"prop": test["rotor_config"]}, "n_psi": 36, "n_r": 100, "aircraft": "case", "segment": "test"})
+    summary = read_table(tmp_path / "loads" / "prop_summary.parquet").set_index("quantity")["value"]
+    assert summary["omega_rad_s"] == row["omega_rad_s"] and abs(summary["thrust_N"] / 40.0 - 1.0) <= 1e-3
