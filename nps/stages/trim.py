@@ -3,16 +3,15 @@
 inputs: none. outputs: ``trim`` (trim.parquet, one row per rotor, :data:`nps.trim.TRIM_COLUMNS`).
 params: ``aircraft_config`` (validated aircraft configuration), ``speeds`` (the mission segment's entry for
 this aircraft: forward_speed_mps, climb_speed_mps, optional rotor_omega_scale), ``atmosphere``
-(altitude_m, isa_delta_K, relative_humidity_pct), ``segment`` (segment id); optional ``n_psi``, ``n_r``
+(altitude_m, isa_delta_K, relative_humidity_pct), ``segment`` (segment id), ``n_psi``, ``n_r``
 (disk resolution of the blade-element loads that solve the speeds of ``rpm``-controlled rotors,
-:func:`nps.control.trim_rotor_speeds`; default: the campaign schema's resolution).
+:func:`nps.control.trim_rotor_speeds`).
 """
 
 from __future__ import annotations
 
 from nps.atmosphere import isa
 from nps.bet import DiskGrid
-from nps.config import schema_default
 from nps.control import trim_rotor_speeds
 from nps.io import write_table
 from nps.trim import FlightCondition
@@ -22,8 +21,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     aircraft, speeds, atm = params["aircraft_config"], params["speeds"], params["atmosphere"]
     atmosphere = isa(atm["altitude_m"], atm["isa_delta_K"], atm["relative_humidity_pct"])
     flight = FlightCondition(speeds["forward_speed_mps"], speeds["climb_speed_mps"], atmosphere)
-    grid = DiskGrid(int(params.get("n_psi", schema_default("config", "resolution.n_psi"))),
-                    int(params.get("n_r", schema_default("config", "resolution.n_r"))))
+    grid = DiskGrid(int(params["n_psi"]), int(params["n_r"]))
     table = trim_rotor_speeds(aircraft, flight, speeds.get("rotor_omega_scale"), grid)
     write_table(table, outputs["trim"], stage="trim",
                 metadata={"aircraft": aircraft["name"], "segment": params["segment"], "speeds": dict(speeds)})
