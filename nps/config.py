@@ -155,12 +155,13 @@ def ordering_problem(field: str, value: Any) -> str | None:
     return None
 
 
-def validate(data: Any, schema_name: str, file: str | Path) -> dict:
-    """Validate ``data`` against a schema; raise :class:`ConfigError` listing every problem."""
+def validate(data: Any, schema_name: str | dict, file: str | Path) -> dict:
+    """Validate ``data`` against a schema (a name under ``nps/schemas/`` or the schema itself);
+    raise :class:`ConfigError` listing every problem."""
     if not isinstance(data, dict):
         _raise(file, [("<top level>", f"expected a mapping, got {type(data).__name__}")])
     problems = list(_non_finite(data, []))
-    validator = jsonschema.Draft202012Validator(load_schema(schema_name))
+    validator = jsonschema.Draft202012Validator(load_schema(schema_name) if isinstance(schema_name, str) else schema_name)
     problems += _schema_problems(validator, data)
     _raise(file, problems)
     return data
@@ -515,3 +516,50 @@ def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", 
                     ))
     _raise(mission_path, problems)
     return Campaign(config=config, aircraft=aircraft, mission=mission, segments=list(segments))
+
+
+def _with_defaults(data: dict, schema: dict) -> dict:
+    """``data`` with the schema's defaults of absent optional properties, one object level deep."""
+    out = dict(data)
+    for key, sub in schema.get("properties", {}).items():
+        if "default" in sub and key not in out:
+            out[key] = sub["default"]
+        if sub.get("type") == "object" and isinstance(out.get(key), dict):
+            out[key] = _with_defaults(out[key], sub)
+    return out
+
+
+def load_rotor_test(path: str | Path) -> dict:
+    """Read and validate one rotor test (``config/tests/*.yaml``, nps.rotor_test) with its rotor.
+
+    Returns the test with the schema's defaults filled in, ``rotor_config`` (the rotor as the stages
+    use it: :func:`nps.rotor_test.rotor_for_test`, validated like an aircraft's ``rotors[]`` entry, tables
+    resolved) and ``microphones_T`` / ``microphone_groups`` (positions in the test frame, group index).
+    """
+    from nps.observers import ObserverError
+    from nps.rotor_test import microphone_positions, rotor_for_test
+
+    path = Path(path)
+    schema = load_schema("rotor_test")
+    data = _with_defaults(validate(read_yaml(path), schema, path), schema)
+    if path.stem != data["name"]:
+        _raise(path, [("name", f"expected the file stem '{path.stem}', got '{data['name']}'")])
+    ref, base = data["rotor"], path.parent
+    if "file" in ref:
+        rotor_file = base / ref["file"]
+        rotor = rotor_for_test(read_yaml(rotor_file), data["condition"])
+        aircraft_schema = load_schema("aircraft")
+        validate(rotor, {"$defs": aircraft_schema["$defs"], "$ref": "#/$defs/rotor"}, rotor_file)
+    else:
+        rotor_file = base / ref["aircraft"]
+        rotor = rotor_for_test(aircraft_rotor(load_aircraft(rotor_file), ref["name"], rotor_file), data["condition"])
+    _raise(rotor_file, [(f"rotor '{rotor['name']}'{field[len('rotor'):]}", what)
+                        for field, what in _rotor_sections(rotor, "rotor", rotor_file.parent)])
+    mode = rotor.get("control", "collective")
+    if mode != "fixed" and "thrust_N" not in data["condition"]:
+        _raise(path, [("condition.thrust_N", f"required with control '{mode}' (the thrust target)")])
+    try:
+        positions, groups = microphone_positions(data["microphones"], base)
+    except ObserverError as exc:
+        raise ConfigError(f"{path}: microphones: {exc}") from None
+    return {**data, "rotor_config": rotor, "microphones_T": positions, "microphone_groups": groups}

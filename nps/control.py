@@ -132,3 +132,58 @@ def solve_rotor(geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, con
     _, result = _secant(lambda t: loads(t, op), _THETA_START_RAD, loads(_THETA_START_RAD, op),
                             _THETA_START_RAD + 0.01, target, tol, "collective", geometry.name)
     return RotorSolution(result, op, control)
+
+
+def trim_rotor_speeds(aircraft: Mapping, flight, omega_scale: Mapping[str, float] | None, grid: DiskGrid,
+                      tol_rel: float = 1e-3, max_iterations: int = 20) -> pd.DataFrame:
+    """Aircraft trim (:func:`nps.trim.trim_aircraft`) with the speeds of the ``rpm``-controlled
+    rotors solved by the blade-element loads: the rotor-speed re-trim of the trim stage.
+
+    The aircraft balance gives every rotor's thrust at the current speeds; each ``rpm`` rotor's
+    Ω is then solved to that thrust at its fixed pitch (:func:`solve_rotor`, tolerance
+    ``tol_rel``/4) and the aircraft re-trimmed at the new speeds (they change the momentum
+    torques, hence the thrust shares). Stops when no speed moves by more than ``tol_rel``/8
+    relative: the loads at the table's Ω then meet its thrust to ``tol_rel`` (thrust ∝ Ω²).
+    Without ``rpm`` rotors this is :func:`nps.trim.trim_aircraft` itself (same table).
+    """
+    from nps.trim import trim_aircraft, trim_row
+
+    controlled = {r["name"]: r for r in aircraft["rotors"] if r.get("control", "collective") == "rpm"}
+    speeds: dict[str, float] = {}
+    for _ in range(max_iterations):
+        table = trim_aircraft(aircraft, flight, omega_scale, speeds)
+        if not controlled:
+            return table
+        solved = {}
+        for name, rotor in controlled.items():
+            row = trim_row(table, name)
+            solution = solve_rotor(RotorGeometry.from_config(rotor), OperatingPoint.from_trim_row(row), grid,
+                                   RotorControl.from_config(rotor), tol_rel=tol_rel / 4,
+                                   tip_loss=bool(rotor.get("tip_loss", True)))
+            solved[name] = solution.operating_point.omega_rad_s
+        moved = max(abs(solved[n] - speeds.get(n, trim_row(table, n)["omega_rad_s"])) / solved[n] for n in solved)
+        speeds = solved
+        if moved <= tol_rel / 8:
+            return trim_aircraft(aircraft, flight, omega_scale, speeds)
+    raise TrimError(f"aircraft '{aircraft['name']}': rotor speeds of the rpm-controlled rotors {sorted(controlled)} did "
+                    f"not settle in {max_iterations} aircraft re-trims (last change {moved:.3g} relative)")
+
+
+def loads_at_trim(geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, control: RotorControl,
+                  tol_rel: float = 1e-3, tip_loss: bool = True) -> RotorSolution:
+    """The loads stage's solution at one trim-table operating point ``op``.
+
+    ``collective`` and ``fixed``: :func:`solve_rotor`. ``rpm``: the table's Ω is already the
+    solved speed (:func:`trim_rotor_speeds`, or the rotor-test set-up), so the loads are taken
+    at it with the fixed pitch — every later stage reads the same Ω from the table — and must
+    meet the table's thrust to ``tol_rel``; a table not trimmed for rpm control fails here.
+    """
+    if control.mode != "rpm":
+        return solve_rotor(geometry, op, grid, control, tol_rel=tol_rel, tip_loss=tip_loss)
+    solution = solve_rotor(geometry, op, grid, replace(control, mode="fixed"), tol_rel=tol_rel, tip_loss=tip_loss)
+    thrust = solution.result.totals.thrust_N
+    if not abs(thrust - op.thrust_N) <= tol_rel * abs(op.thrust_N):
+        raise TrimError(f"rotor '{geometry.name}': rpm control: the trim table's rotor speed {op.omega_rad_s:.6g} rad/s "
+                        f"gives {thrust:.6g} N, not its thrust {op.thrust_N:.6g} N within {tol_rel:.3g}; the trim "
+                        f"table was not trimmed for rpm control (trim stage, nps.control.trim_rotor_speeds)")
+    return RotorSolution(solution.result, op, control)

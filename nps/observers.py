@@ -91,12 +91,18 @@ def observer_set(spec: Mapping, centre_m, reference_radius_m: float, aircraft_ve
     """Build a configured observer set (``observer_sets.<name>`` of config/config.yaml).
 
     ``centre_m``: centre in G at t = 0 of hemispheres and points ahead; a ground grid is centred
-    ``height_below_m`` below the CG (the origin of G at t = 0, docs/conventions.md);
+    ``height_below_m`` below the CG (the origin of G at t = 0, docs/conventions.md); ``point``
+    sets list ``positions_m``, offsets [x, y, z] (m, G axes) from ``centre_m``;
     radii in ``radius_R`` are multiples of ``reference_radius_m``; ``moving`` (default true)
     gives the observers the aircraft velocity.
     """
     kind = spec.get("kind")
     velocity = np.asarray(aircraft_velocity_mps, float) if spec.get("moving", True) else np.zeros(3)
+    if kind == "point":
+        offsets = np.asarray(spec["positions_m"], dtype=float)
+        if offsets.ndim != 2 or offsets.shape[1] != 3 or not np.isfinite(offsets).all():
+            raise ObserverError(f"observer set: positions_m: expected a list of [x, y, z] (m), got {spec['positions_m']!r}")
+        return points(np.asarray(centre_m, dtype=float)[None, :] + offsets, velocity)
     if kind in ("hemisphere", "sphere"):
         return hemisphere(centre_m, spec["radius_R"] * reference_radius_m, int(spec["n_elevation"]), int(spec["n_azimuth"]),
                           velocity, full_sphere=kind == "sphere")
@@ -106,7 +112,7 @@ def observer_set(spec: Mapping, centre_m, reference_radius_m: float, aircraft_ve
     if kind == "ground_grid":
         return ground_grid(np.zeros(3), spec["height_below_m"], spec["x_range_m"], spec["y_range_m"], int(spec["n_x"]),
                            int(spec["n_y"]), velocity)
-    raise ObserverError(f"observer set: kind '{kind}', expected one of {KINDS[1:]}")
+    raise ObserverError(f"observer set: kind '{kind}', expected one of {KINDS}")
 
 
 def rotor_roles(aircraft: Mapping) -> dict[str, str]:

@@ -186,19 +186,22 @@ def _residual(x, states, moments, aircraft, flight, weight_n, length_m) -> np.nd
     return np.concatenate([force / weight_n, moment_b[moments] / (weight_n * length_m)])
 
 
-def trim_aircraft(aircraft: dict, flight: FlightCondition, omega_scale: dict[str, float] | None = None) -> pd.DataFrame:
+def trim_aircraft(aircraft: dict, flight: FlightCondition, omega_scale: dict[str, float] | None = None,
+                  rotor_speeds: dict[str, float] | None = None) -> pd.DataFrame:
     """Trim one aircraft in steady flight; one row per rotor (columns: docs/conventions.md).
 
     ``aircraft`` is a validated aircraft configuration; ``omega_scale`` optional per-rotor
-    speed factors. Raises :class:`AircraftTrimError` if the balance does not converge.
+    speed factors; ``rotor_speeds`` optional rotor speeds (rad/s) that replace the scaled
+    configured ones (the rpm-control re-trim, :func:`nps.control.trim_rotor_speeds`). Raises
+    :class:`AircraftTrimError` if the balance does not converge.
     """
-    omega_scale = omega_scale or {}
+    omega_scale, rotor_speeds = omega_scale or {}, rotor_speeds or {}
     states = []
     for rotor in aircraft["rotors"]:
         axis_b = np.asarray(rotor["thrust_axis_body"], dtype=float)
         axis_b = axis_b / np.linalg.norm(axis_b)
-        states.append(_RotorState(rotor, rotor["omega_rad_s"] * omega_scale.get(rotor["name"], 1.0), axis_b, frames.hub_to_body(axis_b),
-                                  RotorGeometry.from_config(rotor)))
+        omega = rotor_speeds.get(rotor["name"], rotor["omega_rad_s"] * omega_scale.get(rotor["name"], 1.0))
+        states.append(_RotorState(rotor, omega, axis_b, frames.hub_to_body(axis_b), RotorGeometry.from_config(rotor)))
     weight = aircraft["gross_weight_kg"] * G0_M_S2
     length = max(s.radius_m for s in states)
     moments = _layout_moments(aircraft)

@@ -14,6 +14,9 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--altitude-m", type=float, default=default("atmosphere.altitude_m"))
     ap.add_argument("--isa-delta-k", type=float, default=default("atmosphere.isa_delta_K"))
     ap.add_argument("--relative-humidity-pct", type=float, default=default("atmosphere.relative_humidity_pct"))
+    ap.add_argument("--n-psi", type=int, default=default("resolution.n_psi"),
+                    help="azimuth stations of the loads solving rpm-controlled rotor speeds (default %(default)s)")
+    ap.add_argument("--n-r", type=int, default=default("resolution.n_r"), help="radial stations (default %(default)s)")
     ap.add_argument("--out", required=True, help="output Parquet (one row per rotor)")
     args = ap.parse_args(argv)
     problem = option_problem({"--altitude-m": ("atmosphere.altitude_m", args.altitude_m),
@@ -34,6 +37,6 @@ def main(argv: list[str]) -> int:
     atmosphere = {"altitude_m": args.altitude_m, "isa_delta_K": args.isa_delta_k,
                   "relative_humidity_pct": args.relative_humidity_pct}
     params = {"aircraft_config": aircraft, "speeds": segment["aircraft"][aircraft["name"]], "atmosphere": atmosphere,
-              "segment": args.segment}
+              "segment": args.segment, "n_psi": args.n_psi, "n_r": args.n_r}
     return run_stage("trim", {}, {"trim": args.out}, params, args.debug,
                      args.allow_outside_validity)

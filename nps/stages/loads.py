@@ -6,14 +6,20 @@ inputs: ``trim`` (trim.parquet). outputs: ``loads``, a directory with, per rotor
 configuration, in aircraft order), ``n_psi``, ``n_r`` (disk resolution), ``aircraft``, ``segment``;
 optional ``allow_outside_validity`` (campaign switch, default false).
 
+Each rotor is solved under its control mode (``control``, ``pitch_deg``, ``flapping``;
+:func:`nps.control.loads_at_trim`): ``collective`` trims the pitch to the trim table's targets,
+``rpm`` takes the loads at the table's rotor speed (solved by the trim stage), ``fixed`` at the
+given pitch and speed. The summary of an ``rpm`` or ``fixed`` rotor adds its ``omega_rad_s``.
+
 Before computing: the trim artifact must be the aircraft's and segment's (provenance), the disk
-must fit in memory (nps.resources); after each rotor trim: flap angle and controls (nps.validity).
+must fit in memory (nps.resources); after each rotor's loads: flap angle and controls (nps.validity).
 """
 
 from __future__ import annotations
 
 from nps import validity
-from nps.bet import DiskGrid, trim_rotor
+from nps.bet import DiskGrid
+from nps.control import RotorControl, loads_at_trim
 from nps.io import check_provenance, read_table, rotor_path, write_table
 from nps.resources import check_memory, estimate_bytes
 from nps.rotor import OperatingPoint, RotorGeometry
@@ -28,15 +34,18 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
                  f"{outputs['loads']}: loads on a {grid.n_psi} x {grid.n_r} disk (n_psi x n_r)")
     report = []
     for name, rotor in params["rotors"].items():
-        geometry = RotorGeometry.from_config(rotor)
-        result = trim_rotor(geometry, OperatingPoint.from_trim_row(trim_row(trim, name, inputs["trim"])), grid)
+        geometry, control = RotorGeometry.from_config(rotor), RotorControl.from_config(rotor)
+        solution = loads_at_trim(geometry, OperatingPoint.from_trim_row(trim_row(trim, name, inputs["trim"])), grid, control,
+                                 tip_loss=bool(rotor.get("tip_loss", True)))
+        result = solution.result
+        summary = result.summary() if control.mode == "collective" else solution.summary()
         warnings = validity.recorded(validity.loads_findings(name, result.summary()), params,
                                      str(rotor_path(outputs["loads"], name)))
         meta = {"aircraft": params["aircraft"], "segment": params["segment"], "rotor": name, "n_psi": grid.n_psi,
                 "n_r": grid.n_r, "inputs": [str(inputs["trim"])], **warnings}
         write_table(result.disk, rotor_path(outputs["loads"], name), stage="loads", metadata=meta)
-        write_table(result.summary(), rotor_path(outputs["loads"], name, "_summary"), stage="loads", metadata=meta)
+        write_table(summary, rotor_path(outputs["loads"], name, "_summary"), stage="loads", metadata=meta)
         write_table(result.history, rotor_path(outputs["loads"], name, "_history"), stage="loads", metadata=meta)
-        report += [f"rotor {name}:", result.summary().to_string(index=False), result.history.to_string(index=False)
-                   + validity.report(warnings)]
+        report += [f"rotor {name} (control {control.mode}):", summary.to_string(index=False),
+                   result.history.to_string(index=False) + validity.report(warnings)]
     return "\n".join(report)

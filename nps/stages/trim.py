@@ -3,8 +3,10 @@
 inputs: none. outputs: ``trim`` (trim.parquet, one row per rotor, :data:`nps.trim.TRIM_COLUMNS`).
 params: ``aircraft_config`` (validated aircraft configuration), ``speeds`` (the mission segment's entry for
 this aircraft: forward_speed_mps, climb_speed_mps, optional rotor_omega_scale), ``atmosphere``
-(altitude_m, isa_delta_K, relative_humidity_pct), ``segment`` (segment id); optional
-``allow_outside_validity`` (campaign switch, default false).
+(altitude_m, isa_delta_K, relative_humidity_pct), ``segment`` (segment id), ``n_psi``, ``n_r``
+(disk resolution of the blade-element loads that solve the speeds of ``rpm``-controlled rotors,
+:func:`nps.control.trim_rotor_speeds`); optional ``allow_outside_validity`` (campaign switch,
+default false).
 
 Validity (nps.validity): hover tip Mach and Lock number before the trim, advance ratio, advancing
 tip Mach, blade loading, mean lift and vortex-ring state after it.
@@ -14,8 +16,10 @@ from __future__ import annotations
 
 from nps import validity
 from nps.atmosphere import isa
+from nps.bet import DiskGrid
+from nps.control import trim_rotor_speeds
 from nps.io import write_table
-from nps.trim import FlightCondition, trim_aircraft
+from nps.trim import FlightCondition
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:
@@ -25,7 +29,8 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     before = validity.aircraft_findings(aircraft, atmosphere.speed_of_sound_mps, speeds.get("rotor_omega_scale"))
     validity.recorded(before, params, where)  # refuses before the trim unless allowed
     flight = FlightCondition(speeds["forward_speed_mps"], speeds["climb_speed_mps"], atmosphere)
-    table = trim_aircraft(aircraft, flight, speeds.get("rotor_omega_scale"))
+    grid = DiskGrid(int(params["n_psi"]), int(params["n_r"]))
+    table = trim_rotor_speeds(aircraft, flight, speeds.get("rotor_omega_scale"), grid)
     warnings = validity.recorded(before + validity.trim_findings(aircraft, table), params, where)
     write_table(table, outputs["trim"], stage="trim",
                 metadata={"aircraft": aircraft["name"], "segment": params["segment"], "speeds": dict(speeds), **warnings})

@@ -15,7 +15,7 @@ MODULES = sorted(
 )
 PHYSICS = ("acoustics", "atmosphere", "bet", "broadband", "bvi", "frames", "hsi", "hsi_kernels", "metrics", "observers",
            "rotor", "sources", "signals", "spectra", "tones", "trim", "wake", "jit", "airfoils", "blade", "control",
-           "propagation", "trajectory", "certification", "footprint", "source_hemisphere")
+           "propagation", "trajectory", "certification", "footprint", "source_hemisphere", "rotor_test")
 
 
 def _module_level_imports(module: str) -> set[str]:
@@ -99,5 +99,5 @@ def test_every_stage_has_a_command_and_a_run_function(stage):
     from nps.stages import stage_function
 
     assert callable(stage_function(stage))
-    figure_or_study = {"rotor_figures", "hsi_figure", "study_maps", "rotor_maps", "bvi_hotspot", "summary"}
+    figure_or_study = {"rotor_figures", "hsi_figure", "study_maps", "rotor_maps", "bvi_hotspot", "summary", "carpet"}
     assert stage in commands() or stage in figure_or_study

@@ -73,3 +73,35 @@ def test_control_errors():
     with pytest.raises(TrimError, match="gives no positive thrust"):
         solve_rotor(PROP, op, GRID, RotorControl("rpm", math.radians(-10.0), False))
     assert at_rotor_speed(op, 350.0).mu_z == 0.04
+
+
+def test_rpm_controlled_hexacopter_carries_one_rotor_speed_through_trim_and_loads(tmp_path):
+    """The hexacopter with ``control: rpm`` (pitch 10°): the trim stage solves every rotor's Ω with the
+    blade-element loads and re-trims the aircraft; the loads stage, at the trim table's Ω, meets the
+    table's thrust to 0.1 % with the pitch unchanged and reports that same Ω in its summary (the Ω the
+    wake, acoustics and HSI stages read from the table)."""
+    from pathlib import Path
+
+    from nps.config import load_aircraft
+    from nps.io import read_table
+    from nps.stages import loads as loads_stage
+    from nps.stages import trim as trim_stage
+
+    aircraft = load_aircraft(Path(__file__).resolve().parents[2] / "config/aircraft/hexacopter.yaml")
+    for rotor in aircraft["rotors"]:
+        rotor.update(control="rpm", pitch_deg=10.0)
+    resolution = {"n_psi": 36, "n_r": 12}
+    trim_stage.run({}, {"trim": tmp_path / "trim.parquet"},
+                   {"aircraft_config": aircraft, "speeds": {"forward_speed_mps": 20.0, "climb_speed_mps": 0.0},
+                    "atmosphere": {"altitude_m": 0.0, "isa_delta_K": 0.0, "relative_humidity_pct": 70.0},
+                    "segment": "seg1", **resolution})
+    loads_stage.run({"trim": tmp_path / "trim.parquet"}, {"loads": tmp_path / "loads"},
+                    {"rotors": {r["name"]: r for r in aircraft["rotors"]}, "aircraft": "hexacopter", "segment": "seg1",
+                     **resolution})
+    trim = read_table(tmp_path / "trim.parquet").set_index("rotor")
+    assert np.all(trim["omega_rad_s"] != 70.0)
+    for name, row in trim.iterrows():
+        summary = read_table(tmp_path / "loads" / f"{name}_summary.parquet").set_index("quantity")["value"]
+        assert summary["omega_rad_s"] == row["omega_rad_s"]
+        assert abs(summary["thrust_N"] / row["thrust_N"] - 1.0) <= 1e-3
+        assert summary["theta0_rad"] == pytest.approx(math.radians(10.0), abs=1e-15)

@@ -15,7 +15,8 @@ def test_command_and_run_write_identical_artifacts(tmp_path, repo_root):
     speeds = next(s for s in load_mission(mission_path)["segments"] if s["id"] == "seg2")["aircraft"]["coaxial"]
     atmosphere = {"altitude_m": 0.0, "isa_delta_K": 0.0, "relative_humidity_pct": 70.0}
     trim.run({}, {"trim": tmp_path / "run/trim.parquet"},
-             {"aircraft_config": aircraft, "speeds": speeds, "atmosphere": atmosphere, "segment": "seg2"})
+             {"aircraft_config": aircraft, "speeds": speeds, "atmosphere": atmosphere, "segment": "seg2",
+              "n_psi": 360, "n_r": 50})
     assert (tmp_path / "cli/trim.parquet").read_bytes() == (tmp_path / "run/trim.parquet").read_bytes()
 
     trim_path = str(tmp_path / "run/trim.parquet")

@@ -2,7 +2,9 @@
 # Every job runs workflow/scripts/stage.py, which calls nps.stages.<name of the rule>.run (rule name = stage name).
 import sys
 
-from nps.config import ConfigError, load_campaign
+from pathlib import Path
+
+from nps.config import ConfigError, load_campaign, load_rotor_test
 from nps.stages.code import stage_digest
 from nps.metrics import rotor_solidities
 import nps.resources as nps_resources
@@ -198,6 +200,38 @@ def profile_segments():
 
 def footprint_inputs(wildcards):
     return {f"hemisphere_{s}": f"{RESULTS}/{wildcards.aircraft}/{s}/source_hemisphere.parquet" for s in profile_segments()}
+
+
+# used by tests.smk: the rotor test cases of config/tests/ (nps.rotor_test), validated before any job
+TESTS_DIR = Path("config/tests")
+TEST_RESULTS = f"{RESULTS}/tests/{{test}}"
+TEST_SCRIPT = "../scripts/rotor_test_stage.py"
+try:
+    ROTOR_TESTS = {p.stem: load_rotor_test(p) for p in sorted(TESTS_DIR.glob("*.yaml"))}
+except ConfigError as error:
+    sys.stderr.write(f"NPS rotor-test configuration error: {error}\n")
+    raise SystemExit(1)
+
+
+wildcard_constraints:
+    test="|".join(ROTOR_TESTS) or "^$",
+
+
+def test_variant(test):
+    return "bvi" if ROTOR_TESTS[test]["models"]["bvi"] else "base"
+
+
+def rotor_test_rotors(wildcards):
+    rotor = ROTOR_TESTS[wildcards.test]["rotor_config"]
+    return {rotor["name"]: rotor}
+
+
+def test_targets(test):
+    base = f"{RESULTS}/tests/{test}"
+    out = [f"{base}/metrics.parquet"]
+    if ROTOR_TESTS[test]["metrics"]["carpet"]:
+        out.append(f"{base}/carpet.png")
+    return out
 
 
 # ---- resources: mem_mb of the jobs whose arrays scale with the resolution (nps.resources) ----

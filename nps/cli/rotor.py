@@ -1,0 +1,130 @@
+"""``python -m nps rotor``: thrust, torque, power and noise of one isolated rotor at one condition.
+
+The rotor comes from a rotor YAML (``--rotor-file``, one ``rotors[]`` entry of an aircraft file) or an
+aircraft file (``--aircraft`` with ``--rotor``); or give a whole rotor test with ``--test``
+(config/tests/NAME.yaml). The condition: rotor speed, control mode (``fixed``: given pitch and speed;
+``rpm``: pitch given, speed trimmed to ``--thrust-n``; ``collective``: pitch trimmed to ``--thrust-n``),
+shaft angle (positive aft) and wind-tunnel speed (0: hover), atmosphere given directly. Microphones in
+the hub-fixed test frame T (x_T downstream, z_T up, y_T = z_T × x_T; docs/rotor_tests.md): ``--mic X Y Z``
+(repeatable), ``--mic-file`` (CSV x_m,y_m,z_m or YAML), ``--arc-radius-m`` with ``--arc-angles-deg``.
+
+Runs the stages rotor_test, loads and acoustics into ``--out-dir`` and prints the rotor summary and the
+OASPL and BPF-harmonic levels at each microphone (also written to ``levels.csv``).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import yaml
+
+from nps.cli import fail, parser, run_stage
+
+
+def _test_from_options(args) -> dict:
+    """A rotor-test mapping (nps/schemas/rotor_test.schema.yaml) from the options."""
+    if bool(args.rotor_file) == bool(args.aircraft):
+        raise ValueError("give exactly one of --rotor-file, --aircraft (with --rotor), --test")
+    rotor = {"file": str(Path(args.rotor_file).resolve())} if args.rotor_file else \
+        {"aircraft": str(Path(args.aircraft).resolve()), "name": args.rotor}
+    condition = {"atmosphere": {"density_kg_m3": args.density_kg_m3, "speed_of_sound_mps": args.speed_of_sound_mps,
+                                "viscosity_Pa_s": args.viscosity_pa_s},
+                 "shaft_angle_deg": args.shaft_angle_deg, "tunnel_speed_mps": args.speed_mps}
+    condition.update({k: v for k, v in (("rpm", args.rpm), ("omega_rad_s", args.omega_rad_s), ("control", args.control),
+                                        ("pitch_deg", args.pitch_deg), ("thrust_N", args.thrust_n)) if v is not None})
+    if args.no_flapping:
+        condition["flapping"] = False
+    mics = [{"kind": "point", "positions_m": args.mic}] if args.mic else []
+    mics += [{"kind": "file", "path": str(Path(args.mic_file).resolve())}] if args.mic_file else []
+    if args.arc_radius_m is not None:
+        mics.append({"kind": "arc", "radius_m": args.arc_radius_m, "angles_deg": args.arc_angles_deg or [],
+                     "plane": args.arc_plane})
+    if not mics:
+        raise ValueError("microphones: give at least one of --mic, --mic-file, --arc-radius-m")
+    resolution = {"n_psi": args.n_psi, "n_r": args.n_r, "samples_per_rev": args.samples_per_rev}
+    return {"name": "rotor", "description": "python -m nps rotor", "rotor": rotor, "condition": condition,
+            "microphones": mics, "resolution": resolution}
+
+
+def main(argv: list[str]) -> int:
+    ap = parser("rotor", __doc__)
+    ap.add_argument("--test", help="a rotor test YAML instead of the rotor and condition options")
+    ap.add_argument("--rotor-file", help="rotor YAML (one rotors[] entry)")
+    ap.add_argument("--aircraft", help="aircraft YAML holding the rotor")
+    ap.add_argument("--rotor", help="rotor name in --aircraft")
+    speed = ap.add_mutually_exclusive_group()
+    speed.add_argument("--rpm", type=float, help="rotor speed (rev/min)")
+    speed.add_argument("--omega-rad-s", type=float, help="rotor speed (rad/s)")
+    ap.add_argument("--control", choices=["collective", "rpm", "fixed"], help="default: the rotor's")
+    ap.add_argument("--pitch-deg", type=float, help="blade pitch at 75 %% radius (control rpm, fixed)")
+    ap.add_argument("--thrust-n", type=float, help="thrust target (control collective, rpm)")
+    ap.add_argument("--no-flapping", action="store_true", help="rigid blades")
+    ap.add_argument("--shaft-angle-deg", type=float, default=0.0, help="shaft tilt toward downstream (default 0)")
+    ap.add_argument("--speed-mps", type=float, default=0.0, help="wind-tunnel speed (default 0: hover)")
+    ap.add_argument("--density-kg-m3", type=float, default=1.225)
+    ap.add_argument("--speed-of-sound-mps", type=float, default=340.294)
+    ap.add_argument("--viscosity-pa-s", type=float, default=1.789e-5)
+    ap.add_argument("--mic", type=float, nargs=3, action="append", metavar=("X", "Y", "Z"), help="microphone in T (m)")
+    ap.add_argument("--mic-file", help="microphone file in T: CSV x_m,y_m,z_m or YAML")
+    ap.add_argument("--arc-radius-m", type=float, help="microphone arc about the hub")
+    ap.add_argument("--arc-angles-deg", type=float, nargs="+", help="arc angles (any spacing)")
+    ap.add_argument("--arc-plane", choices=["xz", "yz", "xy"], default="xz")
+    ap.add_argument("--harmonics", type=int, default=5, help="BPF harmonics listed (default 5)")
+    ap.add_argument("--n-psi", type=int, default=72)
+    ap.add_argument("--n-r", type=int, default=30)
+    ap.add_argument("--samples-per-rev", type=int, default=1024)
+    ap.add_argument("--out-dir", required=True, help="output directory")
+    args = ap.parse_args(argv)
+    out = Path(args.out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    if args.test:
+        test_file = Path(args.test)
+    else:
+        try:
+            test = _test_from_options(args)
+        except ValueError as error:
+            return fail(str(error))
+        test_file = out / "rotor.yaml"
+        test_file.write_text(yaml.safe_dump(test, sort_keys=False))
+    return run_test(test_file, out, args.harmonics, args.debug)
+
+
+def run_test(test_file: Path, out: Path, n_harmonics: int, debug: bool = False) -> int:
+    """Set-up, loads and acoustics of ``test_file`` into ``out``; print the loads and the levels."""
+    from nps.config import ConfigError, load_rotor_test
+
+    try:
+        test = load_rotor_test(test_file)
+    except ConfigError as error:
+        return fail(str(error))
+    rotor, resolution = test["rotor_config"], test["resolution"]
+    trim, mics = str(out / "trim.parquet"), str(out / "microphones.parquet")
+    steps = [
+        ("rotor_test", {"config": str(test_file)}, {"trim": trim, "observers": mics}, {}),
+        ("loads", {"trim": trim}, {"loads": str(out / "loads")},
+         {"rotors": {rotor["name"]: rotor}, "n_psi": resolution["n_psi"], "n_r": resolution["n_r"],
+          "aircraft": test["name"], "segment": "test"}),
+        ("acoustics", {"disks": str(out / "loads"), "trim": trim, "observers": mics}, {"signals": str(out / "acoustics")},
+         {"rotors": [rotor["name"]], "thickness": test["models"]["thickness"], "chord_fractions": [0.13, 0.87],
+          "samples_per_rev": resolution["samples_per_rev"], "hinge_offsets_m": {rotor["name"]: rotor.get("hinge_offset_m", 0.0)},
+          "aircraft": test["name"], "segment": "test", "obsset": "microphones", "variant": "base"}),
+    ]
+    for stage, inputs, outputs, params in steps:
+        status = run_stage(stage, inputs, outputs, params, debug)
+        if status:
+            return status
+    from nps.io import read_signals, read_table
+    from nps.rotor_test import tone_levels
+
+    row = read_table(trim).iloc[0]
+    bpf_hz = row["n_blades"] * row["omega_rad_s"] / (2.0 * 3.141592653589793)
+    levels = tone_levels(read_signals(out / "acoustics", [rotor["name"]]), bpf_hz, n_harmonics)
+    levels = read_table(mics)[["observer", "x_T_m", "y_T_m", "z_T_m"]].merge(levels, on="observer")
+    levels.to_csv(out / "levels.csv", index=False, float_format="%.6g")
+    print(f"\nrotor {rotor['name']}: omega {row['omega_rad_s']:.6g} rad/s ({row['omega_rad_s'] * 30 / 3.141592653589793:.6g} rpm), "
+          f"thrust {row['thrust_N']:.6g} N, torque {row['torque_Nm']:.6g} N m, power {row['power_W']:.6g} W, "
+          f"C_T {row['ct']:.5g}, BPF {bpf_hz:.6g} Hz")
+    print(levels[["observer", "x_T_m", "y_T_m", "z_T_m", "oaspl_db"] + [f"bpf{m}_db" for m in range(1, n_harmonics + 1)]]
+          .to_string(index=False, float_format=lambda v: f"{v:.2f}"))
+    print(f"written: {out / 'levels.csv'}")
+    return 0
