@@ -64,18 +64,18 @@ def _write_inputs(tmp_path, aircraft):
         "rotor": "main", "n_blades": np.int32(rotor["n_blades"]), "radius_m": rotor["radius_m"], "omega_rad_s": rotor["omega_rad_s"],
         "thrust_N": 5.0e4, "ct": 0.005, "hub_x_m": HUB[0], "hub_y_m": HUB[1], "hub_z_m": HUB[2],
         **{f"r_gh_{i}{j}": R_GH[i, j] for i in range(3) for j in range(3)}}]))
-    write_table(trim, tmp_path / "trim.parquet", stage="test")
+    write_table(trim, tmp_path / "trim.parquet", stage="trim")
     observers = pd.DataFrame({"observer": np.int32([2, 0, 1]), "x_m": OBSERVERS_G[:, 0], "y_m": OBSERVERS_G[:, 1],
                               "z_m": OBSERVERS_G[:, 2], "vx_mps": 0.0, "vy_mps": 0.0, "vz_mps": 0.0,
                               "elevation_deg": 0.0, "azimuth_deg": 0.0})
-    write_table(observers, tmp_path / "obs.parquet", stage="test")
+    write_table(observers, tmp_path / "obs.parquet", stage="observers")
     n = 256
     time = np.arange(n) * (2 * np.pi / rotor["omega_rad_s"]) / n
     p = np.cos(2 * np.pi * 4 * np.arange(n) / n)
     signal = pd.DataFrame({"observer": np.repeat(np.int32([0, 1, 2]), 2 * n), "group": np.tile(np.repeat(["loading", "thickness"], n), 3),
                            "time_s": np.tile(time, 6), "p_Pa": np.tile(p, 6)})
-    write_table(signal, tmp_path / "sig" / "main.parquet", stage="test")
-    write_table(_disk(rotor), tmp_path / "loads" / "main.parquet", stage="test")
+    write_table(signal, tmp_path / "sig" / "main.parquet", stage="acoustics")
+    write_table(_disk(rotor), tmp_path / "loads" / "main.parquet", stage="loads")
     return trim, observers
 
 
@@ -86,7 +86,8 @@ def _run(tmp_path, aircraft, broadband, absorption=False, **extra):
     params = {"rotors": ["main"], "solidity": rotor_solidities(aircraft),
               "atmosphere": {"altitude_m": 0.0, "isa_delta_K": 0.0, "relative_humidity_pct": 70.0},
               "broadband": broadband, "absorption": absorption, "harmonics": [7, 40], "aircraft": "helicopter",
-              "segment": "seg1", "obsset": "obs", "variant": "base", **extra}
+              "segment": "seg1", "obsset": "obs", "variant": "base",
+              "rotor_configs": {"main": aircraft["rotors"][0]}, **extra}
     run(inputs, outputs, params)
     return read_table(outputs["metrics"]), read_table(outputs["bands"])
 
@@ -108,7 +109,8 @@ def test_bpm_broadband_is_the_rotor_average_at_the_hub_frame_observers(tmp_path)
     assert read_metadata(tmp_path / "m_bpm.parquet")["broadband"] == "bpm"
     absorbed, _ = _run(tmp_path, aircraft, "bpm", absorption=True, rotor_configs=configs)
     assert np.all(absorbed.oaspl_broadband_db < metrics.oaspl_broadband_db)
-    with pytest.raises(ValueError, match="disks"):
+    (tmp_path / "loads" / "main.parquet").rename(tmp_path / "main_disk.parquet")
+    with pytest.raises(ValueError, match="loads"):
         _run(tmp_path, aircraft, "bpm")
 
 
@@ -123,7 +125,7 @@ def test_pegg_spellings_agree_and_warn_outside_the_data_range(tmp_path):
     pd.testing.assert_frame_equal(legacy_bands, named_bands)
     assert read_metadata(tmp_path / "m_True.parquet")["broadband"] is True
     trim = read_table(tmp_path / "trim.parquet").assign(thrust_N=5.0e3)
-    write_table(trim, tmp_path / "trim.parquet", stage="test")
+    write_table(trim, tmp_path / "trim.parquet", stage="trim")
     with pytest.warns(UserWarning, match="thrust_N=5000 outside Pegg"):
         _run(tmp_path, aircraft, "pegg")
     import warnings
