@@ -27,6 +27,8 @@ class ObserverError(ValueError):
 
 
 KINDS = ("point", "hemisphere", "sphere", "points_ahead", "ground_grid")
+# stages whose artifact is an observer table: the campaign observer sets and a rotor test's microphones (nps.rotor_test)
+OBSERVER_STAGES = ("observers", "rotor_test")
 
 
 def _table(position_m: np.ndarray, velocity_mps, extra: Mapping[str, np.ndarray]) -> pd.DataFrame:

@@ -54,6 +54,9 @@ TRIM_COLUMNS = (
     "density_kg_m3", "speed_of_sound_mps", "pitch_rad", "roll_rad", "flight_path_rad", "trim_iterations",
 )
 
+# stages whose artifact is a trim table: the aircraft trim and the set-up of a rotor test (nps.rotor_test)
+TRIM_STAGES = ("trim", "rotor_test")
+
 
 def trim_row(trim: pd.DataFrame, rotor: str, what: str = "trim.parquet") -> dict:
     """The row of ``rotor`` in a trim table, as a dict (the one accessor every stage uses).

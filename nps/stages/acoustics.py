@@ -17,10 +17,11 @@ from __future__ import annotations
 
 from nps.acoustics import LOADING, THICKNESS, AcousticsError, Observers
 from nps.io import check_provenance, read_table, rotor_path, write_table
+from nps.observers import OBSERVER_STAGES
 from nps.resources import check_memory, estimate_bytes
 from nps.signals import signals_table
 from nps.sources import DISK_COLUMNS, ThicknessModel, common_grid, radiate_rotor
-from nps.trim import TRIM_COLUMNS, trim_row
+from nps.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
 
 OBSERVER_COLUMNS = ("observer", "x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps")
 DISK_STAGE = {"base": "loads", "bvi": "bvi"}  # variant -> stage that wrote its disk tables
@@ -31,8 +32,8 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     model = ThicknessModel(params["thickness"], tuple(float(f) for f in params["chord_fractions"]))
     samples = int(params["samples_per_rev"])
     same = {"aircraft": params["aircraft"], "segment": params["segment"]}
-    check_provenance(inputs["trim"], {"stage": "trim", **same})
-    check_provenance(inputs["observers"], {"stage": "observers", "obsset": params["obsset"], **same})
+    check_provenance(inputs["trim"], {"stage": TRIM_STAGES, **same})
+    check_provenance(inputs["observers"], {"stage": OBSERVER_STAGES, "obsset": params["obsset"], **same})
     for name in rotors:
         check_provenance(rotor_path(inputs["disks"], name),
                          {"stage": DISK_STAGE.get(params["variant"], tuple(DISK_STAGE.values())), "rotor": name, **same})

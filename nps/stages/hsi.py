@@ -22,9 +22,10 @@ import pandas as pd
 
 from nps.hsi import OBSERVER_COLUMNS, HsiIntermediate, process
 from nps.io import artifact_rows, check_provenance, read_signals, read_table, rotor_path, write_table
+from nps.observers import OBSERVER_STAGES
 from nps.resources import check_memory, estimate_bytes
 from nps.signals import check_observers
-from nps.trim import TRIM_COLUMNS, trim_row
+from nps.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
 
 
 def intermediate_table(inter: HsiIntermediate) -> pd.DataFrame:
@@ -47,8 +48,8 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     rotors = list(params["rotors"])
     observer = params.get("observer")
     same = {"aircraft": params.get("aircraft"), "segment": params.get("segment")}
-    check_provenance(inputs["trim"], {"stage": "trim", **same})
-    check_provenance(inputs["observers"], {"stage": "observers", "obsset": params["obsset"], **same})
+    check_provenance(inputs["trim"], {"stage": TRIM_STAGES, **same})
+    check_provenance(inputs["observers"], {"stage": OBSERVER_STAGES, "obsset": params["obsset"], **same})
     for name in rotors:
         check_provenance(rotor_path(inputs["signals"], name), {"stage": "acoustics", "rotor": name, "obsset": params["obsset"],
                                                                "variant": params["variant"], **same})

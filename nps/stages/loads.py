@@ -23,11 +23,11 @@ from nps.control import RotorControl, loads_at_trim
 from nps.io import check_provenance, read_table, rotor_path, write_table
 from nps.resources import check_memory, estimate_bytes
 from nps.rotor import OperatingPoint, RotorGeometry
-from nps.trim import TRIM_COLUMNS, trim_row
+from nps.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:
-    check_provenance(inputs["trim"], {"stage": "trim", "aircraft": params["aircraft"], "segment": params["segment"]})
+    check_provenance(inputs["trim"], {"stage": TRIM_STAGES, "aircraft": params["aircraft"], "segment": params["segment"]})
     trim = read_table(inputs["trim"], required=TRIM_COLUMNS, nonempty=True)
     grid = DiskGrid(int(params["n_psi"]), int(params["n_r"]))
     check_memory(estimate_bytes("loads", {"n_psi": grid.n_psi, "n_r": grid.n_r}, n_rotors=len(params["rotors"])),

@@ -34,9 +34,10 @@ from nps.broadband import pegg_outside_range
 from nps.config import broadband_model
 from nps.io import artifact_rows, check_provenance, read_signals, read_table, rotor_path, write_table
 from nps.metrics import STUDY_BANDS, metrics_tables
+from nps.observers import OBSERVER_STAGES
 from nps.resources import check_memory, estimate_bytes
 from nps.signals import check_observers
-from nps.trim import trim_row
+from nps.trim import TRIM_STAGES, trim_row
 
 
 def _bpm_band_msp(inputs: dict, params: dict, trim, observers, atmosphere) -> tuple[dict, list[str]]:
@@ -63,8 +64,8 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     rotors = list(params["rotors"])
     model = broadband_model(params["broadband"])
     same = {"aircraft": params["aircraft"], "segment": params["segment"]}
-    check_provenance(inputs["trim"], {"stage": "trim", **same})
-    observer_meta = check_provenance(inputs["observers"], {"stage": "observers", "obsset": params["obsset"], **same})
+    check_provenance(inputs["trim"], {"stage": TRIM_STAGES, **same})
+    observer_meta = check_provenance(inputs["observers"], {"stage": OBSERVER_STAGES, "obsset": params["obsset"], **same})
     signal_dirs = {"signals": "acoustics", **({"hsi": "hsi"} if "hsi" in inputs else {})}
     for key, stage in signal_dirs.items():
         for name in rotors:

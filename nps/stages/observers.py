@@ -20,13 +20,13 @@ import math
 from nps import validity
 from nps.io import check_provenance, read_table, write_table
 from nps.observers import lift_rotors, observer_centre, observer_set, with_directions
-from nps.trim import TRIM_COLUMNS, trim_row
+from nps.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:
     spec, roles, radius = params["spec"], params["rotor_roles"], float(params["reference_radius_m"])
     centre_rotors = lift_rotors(roles)
-    check_provenance(inputs["trim"], {"stage": "trim", "aircraft": params["aircraft"], "segment": params["segment"]})
+    check_provenance(inputs["trim"], {"stage": TRIM_STAGES, "aircraft": params["aircraft"], "segment": params["segment"]})
     trim = read_table(inputs["trim"], required=TRIM_COLUMNS, nonempty=True)
     centre = observer_centre(trim, centre_rotors, str(inputs["trim"]))
     velocity = trim[["vel_x_mps", "vel_y_mps", "vel_z_mps"]].to_numpy(float)[0]

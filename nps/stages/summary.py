@@ -11,6 +11,7 @@ import pandas as pd
 
 from nps.io import check_provenance, read_metadata, read_table, rotor_path, write_table
 from nps.study import STAGES, segment_summary
+from nps.trim import TRIM_STAGES
 
 
 def stage_wall_times(benchmark_dir: str | Path, aircraft: str, segment: str) -> dict[str, float]:
@@ -43,7 +44,7 @@ def segment_artifacts(inputs: dict, params: dict, segment: str) -> dict:
     """Artifacts of one segment the summary reads or lists the warnings of (trim, loads summaries,
     wake tables where computed, metrics of each variant) → the provenance each must have."""
     same = {"aircraft": params["aircraft"], "segment": segment}
-    artifacts = {inputs[f"trim_{segment}"]: {"stage": "trim", **same}}
+    artifacts = {inputs[f"trim_{segment}"]: {"stage": TRIM_STAGES, **same}}
     artifacts.update({rotor_path(inputs[f"loads_{segment}"], r, "_summary"): {"stage": "loads", "rotor": r, **same}
                       for r in params["rotors"]})
     if f"wake_{segment}" in inputs:

@@ -29,7 +29,7 @@ from nps import bvi, freewake, interaction, validity, vtk, wake
 from nps.io import check_provenance, read_table, rotor_path, write_table
 from nps.resources import check_memory, estimate_bytes
 from nps.rotor import RotorGeometry, RotorMotion
-from nps.trim import TRIM_COLUMNS, trim_row
+from nps.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
 
 SUMMARY_COLUMNS = ("quantity", "value", "unit")
 
@@ -50,7 +50,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     bvi_model = bvi.BVIModel(unsteady=bool(params.get("unsteady", True)))
     step_deg = float(params.get("step_deg", 5.0))
     same = {"aircraft": params["aircraft"], "segment": params["segment"]}
-    check_provenance(inputs["trim"], {"stage": "trim", **same})
+    check_provenance(inputs["trim"], {"stage": TRIM_STAGES, **same})
     trim = read_table(inputs["trim"], required=TRIM_COLUMNS, nonempty=True)
     wake_dir, bvi_dir = Path(outputs["wake"]), Path(outputs["bvi"])
     names = list(params["rotors"])

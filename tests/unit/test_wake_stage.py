@@ -132,7 +132,7 @@ def test_free_wake_stage_couples_the_rotors_and_writes_the_interaction_summary(c
     assert loads_cli.main(["--aircraft", aircraft, "--trim", str(chain / "trim.parquet"), "--n-psi", "72", "--n-r", "12",
                            "--out-dir", str(chain / "loads_all")]) == 0
     args = ["--aircraft", aircraft, "--trim", str(chain / "trim.parquet"), "--loads-dir", str(chain / "loads_all"),
-            "--step-deg", "30", "--steps-per-rev", "72", "--revolutions", "2"]
+            "--step-deg", "30", "--steps-per-rev", "72", "--revolutions", "2", "--allow-outside-validity"]
     assert wake_cli.main(args + ["--wake-dir", str(chain / "wb"), "--bvi-dir", str(chain / "bb")]) == 0
     assert wake_cli.main(args + ["--model", "free", "--wake-dir", str(chain / "wf"), "--bvi-dir", str(chain / "bf")]) == 0
     summary = read_table(chain / "wf/interaction.parquet")
