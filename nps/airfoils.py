@@ -38,7 +38,6 @@ every Mach number (no compressibility correction).
 
 from __future__ import annotations
 
-import csv
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -46,6 +45,7 @@ from typing import ClassVar, Protocol
 
 import numpy as np
 
+from nps.blade import read_commented_csv
 from nps.jit import kernel
 
 _FIELD = 7
@@ -354,12 +354,7 @@ def write_c81(path: str | Path, table: AirfoilTable) -> None:
 def read_polar_csv(path: str | Path, *, reynolds: float | None = None) -> AirfoilTable:
     """Read a CSV polar (format in the module docstring); ``reynolds`` selects one polar."""
     path = Path(path)
-    if not path.is_file():
-        raise AirfoilError(f"{path}: airfoil table not found")
-    with open(path, newline="") as handle:
-        rows = [line for line in handle if line.strip() and not line.lstrip().startswith("#")]
-    reader = csv.DictReader(rows)
-    columns = [c.strip() for c in (reader.fieldnames or [])]
+    reader, columns = read_commented_csv(path, "airfoil table", AirfoilError)
     for required in ("alpha_deg", "cl", "cd"):
         if required not in columns:
             raise AirfoilError(f"{path}: column {required}: required column missing; found {columns}")

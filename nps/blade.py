@@ -153,15 +153,21 @@ def _columns_to_table(columns: Mapping[str, list], radius_m: float, source: str)
     )
 
 
-def read_blade_csv(path: str | Path, radius_m: float) -> BladeTable:
-    """A blade table from a CSV file (one row per station; ``#`` starts a comment line)."""
-    path = Path(path)
+def read_commented_csv(path: Path, what: str, error: type[Exception]) -> tuple[csv.DictReader, list[str]]:
+    """A CSV table whose blank lines and ``#`` comment lines are skipped: (row reader, stripped column names).
+    A missing file raises ``error`` naming the file and ``what`` it should hold."""
     if not path.is_file():
-        raise BladeError(f"{path}: blade table not found")
+        raise error(f"{path}: {what} not found")
     with open(path, newline="") as handle:
         rows = [line for line in handle if line.strip() and not line.lstrip().startswith("#")]
     reader = csv.DictReader(rows)
-    fields = [f.strip() for f in reader.fieldnames or []]
+    return reader, [f.strip() for f in reader.fieldnames or []]
+
+
+def read_blade_csv(path: str | Path, radius_m: float) -> BladeTable:
+    """A blade table from a CSV file (one row per station; ``#`` starts a comment line)."""
+    path = Path(path)
+    reader, fields = read_commented_csv(path, "blade table", BladeError)
     columns: dict[str, list] = {f: [] for f in fields}
     for row in reader:
         for f in fields:
