@@ -60,6 +60,10 @@ from nps.jit import kernel, prange
 HART_II_CORE_RADIUS_CHORDS = 0.14
 # Bhagwat & Leishman (2000): δ = 1 + a₁ Γ_v/ν with a₁ = 6.5e-5 from rotor tip-vortex measurements.
 BHAGWAT_LEISHMAN_A1 = 6.5e-5
+# Rotors are coupled when one's far-field velocity estimate at the other reaches this fraction
+# of the other's mean induced velocity: the rotor trim's relative thrust tolerance
+# (docs/models/wake_bvi.md, "Far-apart rotors").
+COUPLING_THRESHOLD = 1e-3
 
 
 class FreeWakeError(RuntimeError):
@@ -171,7 +175,9 @@ class RotorPlacement:
 @dataclass(frozen=True)
 class FreeWakeSolution:
     """Converged free wake: distortion (n_rotors, N, J+1, 3) from the Beddoes geometry (m, each
-    rotor's H'), on ψ_i = iΔ, φ_j = jΔ; ``residual_history`` (iterations,) max |ΔX|/R."""
+    rotor's H'), on ψ_i = iΔ, φ_j = jΔ; ``residual_history`` (iterations,) max |ΔX|/R (of the
+    coupled group that needed the most iterations); ``groups``: the coupled groups of rotor
+    indices (:func:`coupled_groups`), each relaxed on its own (None: all rotors one group)."""
 
     rotors: tuple[RotorPlacement, ...]
     beddoes: wake.WakeModel
@@ -179,12 +185,62 @@ class FreeWakeSolution:
     distortion_m: np.ndarray
     iterations: int
     residual_history: np.ndarray
+    groups: tuple[tuple[int, ...], ...] | None = None
+
+    def group_of(self, index: int) -> tuple[int, ...]:
+        """The coupled group (rotor indices, ascending) that rotor ``index`` belongs to."""
+        if self.groups is None:
+            return tuple(range(len(self.rotors)))
+        return next(g for g in self.groups if index in g)
 
     def index(self, name: str) -> int:
         names = [r.name for r in self.rotors]
         if name not in names:
             raise ValueError(f"free wake: no rotor '{name}' (rotors {names})")
         return names.index(name)
+
+
+def far_field_ratio(source: RotorPlacement, target: RotorPlacement) -> float:
+    """Estimate of the velocity the source rotor's wake induces at the target's hub, relative to
+    the target's own mean induced velocity (momentum far field of a lifting rotor; docs):
+
+        w / v_i,q = (v_i,p / v_i,q) · R_p² / (2 d²),
+
+    v_i = Ω R λ0 (Glauert, :func:`nps.wake.mean_inflow`), d the hub distance (m). For a distant
+    rotor in forward flight w = T/(4π ρ V d²) is the upwash beside a semi-infinite trailing
+    vortex pair, in hover A v_i/(2π d²) bounds the inflow into the slipstream; both equal
+    v_i R²/(2 d²)."""
+    d = float(np.linalg.norm(np.asarray(source.hub_position_m, float) - np.asarray(target.hub_position_m, float)))
+    if d == 0.0:
+        return math.inf
+
+    def v_i(s: wake.WakeState) -> float:
+        return s.omega_rad_s * s.radius_m * wake.mean_inflow(s.ct, s.mu_inplane, s.mu_z)
+
+    return v_i(source.state) / v_i(target.state) * source.state.radius_m ** 2 / (2.0 * d * d)
+
+
+def coupled_groups(rotors: Sequence[RotorPlacement]) -> tuple[tuple[int, ...], ...]:
+    """Rotor indices grouped so that two rotors share a group when a chain of rotors connects
+    them in which each wake reaches the next rotor with :func:`far_field_ratio` ≥
+    ``COUPLING_THRESHOLD`` (either direction). Rotors of different groups are not coupled: the
+    other wake's far field would change a rotor's inflow by less than the trim tolerance, and
+    a tip-vortex wake's far field is not the physical one there (docs, "Far-apart rotors")."""
+    parent = list(range(len(rotors)))
+
+    def root(i):
+        while parent[i] != i:
+            i = parent[i]
+        return i
+
+    for q in range(len(rotors)):
+        for p in range(q + 1, len(rotors)):
+            if max(far_field_ratio(rotors[p], rotors[q]), far_field_ratio(rotors[q], rotors[p])) >= COUPLING_THRESHOLD:
+                parent[root(p)] = root(q)
+    groups: dict[int, list[int]] = {}
+    for i in range(len(rotors)):
+        groups.setdefault(root(i), []).append(i)
+    return tuple(tuple(g) for g in sorted(groups.values()))
 
 
 @dataclass(frozen=True)
@@ -421,11 +477,13 @@ def _march(x_old: np.ndarray, velocity: np.ndarray, step_time_s: float) -> np.nd
 
 
 def relax(rotors: Sequence[RotorPlacement], beddoes: wake.WakeModel, model: FreeWakeModel = FreeWakeModel()) -> FreeWakeSolution:
-    """Free wake of all ``rotors`` together (module doc), from the Beddoes wake as initial guess.
+    """Free wake of all ``rotors`` (module doc), from the Beddoes wake as initial guess; each
+    group of :func:`coupled_groups` is relaxed together, the groups independently (a rotor alone
+    in its group gets exactly its isolated wake).
 
     Raises :class:`FreeWakeError` naming the rotor, the iteration and the residual when a node
     becomes non-finite, the residual exceeds one radius (divergence) or ``max_iterations`` pass
-    without max |ΔX| < ``tolerance_radius_fraction`` · R for every rotor.
+    without max |ΔX| < ``tolerance_radius_fraction`` · R for every rotor of a group.
     """
     rotors = tuple(rotors)
     if not rotors:
@@ -433,6 +491,20 @@ def relax(rotors: Sequence[RotorPlacement], beddoes: wake.WakeModel, model: Free
     names = [r.name for r in rotors]
     if len(set(names)) != len(names):
         raise ValueError(f"free wake: rotor names must be unique, got {names}")
+    groups = coupled_groups(rotors)
+    distortion = np.zeros((len(rotors), model.steps_per_rev, model.n_age + model.n_far + 1, 3))
+    slowest = (0, np.zeros(0))
+    for group in groups:
+        part, iterations, history = _relax_group([rotors[i] for i in group], beddoes, model)
+        distortion[list(group)] = part
+        if iterations > slowest[0]:
+            slowest = (iterations, history)
+    return FreeWakeSolution(rotors, beddoes, model, distortion, slowest[0], slowest[1], groups)
+
+
+def _relax_group(rotors, beddoes, model) -> tuple[np.ndarray, int, np.ndarray]:
+    """Relaxation of coupled rotors: (distortion (n, N, J+J_far+1, 3), iterations, residual history)."""
+    names = [r.name for r in rotors]
     base = np.stack([_node_table(r, beddoes, model) for r in rotors])
     distortion = np.zeros_like(base)
     radius = np.array([r.state.radius_m for r in rotors])
@@ -455,7 +527,7 @@ def relax(rotors: Sequence[RotorPlacement], beddoes: wake.WakeModel, model: Free
             raise FreeWakeError(f"free wake diverged: rotor '{names[worst]}', iteration {iteration}, "
                                 f"node change {change[worst]:.3g} R (> 1 R)")
         if change.max() < model.tolerance_radius_fraction:
-            return FreeWakeSolution(rotors, beddoes, model, distortion, iteration, np.array(history))
+            return distortion, iteration, np.array(history)
     raise FreeWakeError(
         f"free wake did not converge: rotor '{names[worst]}', {model.max_iterations} iterations, node change "
         f"{change[worst]:.3g} R between the last two (tolerance {model.tolerance_radius_fraction:g} R)")
@@ -470,7 +542,8 @@ def _check_finite(rotors, x, iteration, stage):
 
 def disk_induced_velocity(solution: FreeWakeSolution, target: str, psi_rad, r_m, beta_rad) -> np.ndarray:
     """Velocity (n_rotors, n_psi, n_r, 3) in the target rotor's H' (m/s) induced at its blade
-    stations by each rotor's free wake (index = ``solution.rotors`` order).
+    stations by each rotor's free wake (index = ``solution.rotors`` order; zero for rotors
+    outside the target's coupled group).
 
     ``psi_rad`` (n_psi,) target blade-0 azimuths, ``r_m`` (n_r,), ``beta_rad`` broadcastable to
     (n_psi, n_r). Segments 2π/``beddoes.steps_per_rev`` long, lifting-line core of the
@@ -478,11 +551,15 @@ def disk_induced_velocity(solution: FreeWakeSolution, target: str, psi_rad, r_m,
     :func:`nps.wake.disk_induced_velocity`.
     """
     t = solution.index(target)
+    group = list(solution.group_of(t))
     psi = np.ascontiguousarray(psi_rad, dtype=float)
     points = wake.blade_points(psi, r_m, beta_rad)
-    sources = _lifting_line_sources(solution.rotors, solution.beddoes, solution.distortion_m)
-    return _induced(solution.rotors, sources, [t], points[None], psi, solution.beddoes.n_age, solution.beddoes.dphi_rad,
-                    solution.model.step_rad, solution.beddoes.vatistas_n, False)[0]
+    rotors = [solution.rotors[i] for i in group]
+    sources = _lifting_line_sources(rotors, solution.beddoes, solution.distortion_m[group])
+    out = np.zeros((len(solution.rotors),) + points.shape)
+    out[group] = _induced(rotors, sources, [group.index(t)], points[None], psi, solution.beddoes.n_age,
+                          solution.beddoes.dphi_rad, solution.model.step_rad, solution.beddoes.vatistas_n, False)[0]
+    return out
 
 
 def snapshot_nodes(solution: FreeWakeSolution, rotor: str, psi_blade_rad: float) -> np.ndarray:

@@ -21,8 +21,10 @@ No double counting (docs/models/wake_bvi.md, "Rotor–rotor interaction"):
 - the ≥ 2/rev part of all wakes is the BVI increment (gust response as in :mod:`nps.bvi`).
 
 One coupling pass: the wakes are relaxed with the strengths of the loads tables; the
-re-trimmed circulation is not fed back into the wake. A single-rotor aircraft needs no
-isolated solution (the coupled one is it) and is never re-trimmed.
+re-trimmed circulation is not fed back into the wake. A rotor alone in its coupled group
+(:func:`nps.freewake.coupled_groups`: a single-rotor aircraft, or rotors too far apart to
+change each other's inflow by the trim tolerance) needs no isolated solution (the coupled one
+is it) and is never re-trimmed: it gets exactly its isolated result.
 """
 
 from __future__ import annotations
@@ -98,7 +100,8 @@ def aircraft_bvi_loads(
         raise ValueError("aircraft_bvi_loads: the interaction rule needs BVIModel.removed_harmonics = 1")
     rotors = placements(trim, disks, summaries)
     solution = freewake.relax(rotors, wake_model, free_model)
-    alone = {r.name: freewake.relax([r], wake_model, free_model) for r in rotors} if len(rotors) > 1 else {}
+    coupled = {r.name: len(solution.group_of(i)) > 1 for i, r in enumerate(rotors)}
+    alone = {r.name: freewake.relax([r], wake_model, free_model) for r in rotors if coupled[r.name]}
     results, retrims, rows = {}, {}, []
     for p, rotor in enumerate(rotors):
         name = rotor.name
@@ -120,7 +123,7 @@ def aircraft_bvi_loads(
                 low_ut += d_ut - h_ut
                 low_up += d_up - h_up
             parts.append((d_up - h_up, h_up))
-        if alone:
+        if coupled[name]:
             v_alone = freewake.disk_induced_velocity(alone[name], name, grid.psi_rad, grid.r_m, beta)[0]
             a_ut, a_up = bvi.blade_frame_increments(v[p] - v_alone, grid.psi_rad, beta)
             low_ut += a_ut - bvi.remove_low_harmonics(a_ut, 1)
@@ -130,7 +133,7 @@ def aircraft_bvi_loads(
         probe = bvi.loads_with_increments(disk, row, geometry, low_ut, low_up, v.sum(axis=0), bvi.BVIModel(unsteady=False))
         change = _disk_thrust(probe.disk, geometry.n_blades, n_psi) / target - 1.0
         retrim = None
-        if abs(change) > TRIM_TOLERANCE and len(rotors) > 1:
+        if abs(change) > TRIM_TOLERANCE and coupled[name]:
             retrim = bet.trim_rotor(geometry, OperatingPoint.from_trim_row(row), bet.DiskGrid(grid.shape[0], grid.shape[1]),
                                     tol_rel=TRIM_TOLERANCE, interference=(low_ut, low_up))
             result = bvi.loads_with_increments(retrim.disk, row, geometry, high_ut, high_up, v.sum(axis=0), bvi_model)
