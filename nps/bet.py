@@ -57,6 +57,13 @@ Trim (Fig. 4.3)
     shaft) with the same criterion applied to the thrust-tilt moment T* R β1, i.e.
     |β1c|, |β1s| ≤ tol_rel rad; non-zero moment targets are refused for e = 0. Zero moment
     targets mean the same for e > 0.
+
+Prescribed (measured) flapping (``RotorGeometry.prescribed_flap_harmonics``)
+    β(ψ) and β̇ = Ω dβ/dψ come from the given harmonics (all of them, n = 0 with the precone);
+    only λ0 is solved at given controls. The hub moments are then those the harmonic balance
+    gives at convergence, (B/2) K β1 = (B/2) M_β,1 (the first-harmonic aerodynamic moment about
+    the hinge): M_x = s (B/2) M_β,1s, M_y = −(B/2) M_β,1c, trimmed by the same phased-cyclic
+    steps (the measured blade motion is matched by the airloads that go with it; any e ≥ 0).
 """
 
 from __future__ import annotations
@@ -318,6 +325,8 @@ def check_geometry(geometry: RotorGeometry) -> None:
          "(n >= 1, finite amplitude and phase in rad) entries"),
         ("elastic_twist_harmonics", all(_harmonic_ok(h, 0) for h in g.elastic_twist_harmonics),
          "(n >= 0, finite cos and sin coefficients in rad) entries"),
+        ("prescribed_flap_harmonics", all(_harmonic_ok(h, 0) for h in g.prescribed_flap_harmonics),
+         "(n >= 0, finite cos and sin coefficients in rad) entries"),
     ]
     for name, ok, expected in checks:
         if not ok:
@@ -377,6 +386,8 @@ class _Disk:
         self.rbar = self.r[None, :] / R
         self.twist = geometry.twist_at(self.r)[None, :]
         self.prescribed_pitch = geometry.prescribed_pitch(psi, self.r)
+        flap = geometry.prescribed_flap(psi)
+        self.prescribed_flap = None if flap is None else (flap[0][:, None], omega * flap[1][:, None])
         self.flap_arm = np.maximum(self.r - geometry.hinge_offset_m, 0.0)
         self.nu2 = flap_frequency_sq(geometry)
         self.i_omega2 = flap_inertia(geometry, op.density_kg_m3) * omega**2
@@ -400,8 +411,11 @@ class _Disk:
         if self.prescribed_pitch is not None:
             theta = theta + self.prescribed_pitch
         lam = self.op.mu_z + lambda0 * (1.0 + self.rbar * (i.kx * self.cos + i.ky * self.sin))
-        beta = beta0 + beta1c * self.cos + beta1s * self.sin
-        beta_dot = omega * (beta1s * self.cos - beta1c * self.sin)
+        if self.prescribed_flap is None:
+            beta = beta0 + beta1c * self.cos + beta1s * self.sin
+            beta_dot = omega * (beta1s * self.cos - beta1c * self.sin)
+        else:
+            beta, beta_dot = self.prescribed_flap
         up = self.tip_speed * lam + (self.r[None, :] - self.g.hinge_offset_m) * beta_dot + self.ur * beta
         if self.extra_up is not None:
             up = up + self.extra_up
@@ -429,6 +443,8 @@ class _Disk:
             (self.nu2 - 1.0) * x[3] - m1s,
         ])
         f["thrust"] = thrust
+        # hub moments (H') of the first-harmonic aerodynamic flap moment, (B/2) M_β,1s and −(B/2) M_β,1c
+        f["flap_hub_moments"] = 0.5 * self.g.n_blades * self.i_omega2 * np.array([m1s, -m1c])
         return res, f
 
 
@@ -437,7 +453,11 @@ class _StateSolver:
 
     def __init__(self, disk: _Disk, x0: np.ndarray, flapping: bool = True):
         self.disk, self.x, self.jac = disk, np.array(x0, dtype=float), None
-        self.active = np.arange(4) if flapping else np.arange(1)
+        self.active = np.arange(4) if flapping and disk.prescribed_flap is None else np.arange(1)
+        if disk.prescribed_flap is not None:  # reported flapping: the prescribed mean and first harmonics
+            beta = disk.prescribed_flap[0][:, 0]
+            n = beta.size
+            self.x[1:] = beta.mean(), 2.0 / n * float(beta @ disk.cos[:, 0]), 2.0 / n * float(beta @ disk.sin[:, 0])
 
     def _jacobian(self, c: Controls, x: np.ndarray, res: np.ndarray) -> np.ndarray:
         jac = np.empty((self.active.size, self.active.size))
@@ -513,7 +533,10 @@ def _initial_state_for_controls(geometry: RotorGeometry, op: OperatingPoint, the
 
 
 def _outputs(disk: _Disk, fields: dict, x: np.ndarray, thrust_ref: float, k_hub: float) -> np.ndarray:
-    """Trim outputs (T, M_x', M_y') in the aerodynamic frame; for e = 0 the thrust-tilt moment T* R β1."""
+    """Trim outputs (T, M_x', M_y') in the aerodynamic frame; for e = 0 the thrust-tilt moment T* R β1;
+    with prescribed flapping the aerodynamic first-harmonic flap moments (module doc)."""
+    if disk.prescribed_flap is not None:
+        return np.array([fields["thrust"], *fields["flap_hub_moments"]])
     stiffness = k_hub if k_hub > 0.0 else abs(thrust_ref) * disk.g.radius_m
     return np.array([fields["thrust"], stiffness * x[3], -stiffness * x[2]])
 
@@ -551,7 +574,7 @@ def _trim_targets(geometry: RotorGeometry, op: OperatingPoint, tol_rel: float):
     thrust_ref = abs(op.thrust_N)
     if thrust_ref == 0.0:
         raise ValueError(f"rotor '{geometry.name}': operating point thrust_N: expected a non-zero thrust target")
-    if k_hub == 0.0 and (op.roll_moment_Nm != 0.0 or op.pitch_moment_Nm != 0.0):
+    if k_hub == 0.0 and not geometry.prescribed_flap_harmonics and (op.roll_moment_Nm != 0.0 or op.pitch_moment_Nm != 0.0):
         raise ValueError(
             f"rotor '{geometry.name}': roll_moment_Nm/pitch_moment_Nm: expected 0 for a rotor without hinge offset "
             f"(it transmits no hub moment), got {op.roll_moment_Nm}, {op.pitch_moment_Nm}"
@@ -715,14 +738,18 @@ def _totals(disk: _Disk, fields: dict, x: np.ndarray) -> RotorTotals:
     y_aero = avg * float(np.sum(-fx_dr * disk.cos - fz_dr * beta * disk.sin))
     torque = avg * float(np.sum(fx_dr * disk.r[None, :]))
     k_hub = hub_flap_stiffness(g, op.omega_rad_s, op.density_kg_m3)
+    if disk.prescribed_flap is None:
+        roll, pitch = k_hub * x[3], -k_hub * x[2]
+    else:
+        roll, pitch = fields["flap_hub_moments"]
     return RotorTotals(
         thrust_N=thrust,
         h_force_N=h,
         y_force_N=s * y_aero,
         torque_Nm=torque,
         power_W=torque * op.omega_rad_s,
-        roll_moment_Nm=s * k_hub * x[3],
-        pitch_moment_Nm=-k_hub * x[2],
+        roll_moment_Nm=s * roll,
+        pitch_moment_Nm=pitch,
         aero_roll_moment_Nm=s * avg * float(np.sum(fz_dr * disk.r[None, :] * disk.sin)),
         aero_pitch_moment_Nm=-avg * float(np.sum(fz_dr * disk.r[None, :] * disk.cos)),
         ct=thrust / disk.norm_ct,

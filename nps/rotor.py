@@ -36,7 +36,12 @@ class RotorGeometry:
     ``higher_harmonic_pitch`` ((n, θ_n rad, ψ_n rad), ...) adds Σ θ_n cos(nψ − ψ_n) to the pitch
     of the whole blade (higher-harmonic control); ``elastic_twist_harmonics`` ((n, c_n rad,
     s_n rad), ...) adds (r/R) Σ (c_n cos nψ + s_n sin nψ), an elastic torsion given at the tip
-    and linear along the span (n = 0 is the mean).
+    and linear along the span (n = 0 is the mean); ``prescribed_flap_harmonics`` ((n, c_n rad,
+    s_n rad), ...) replaces the computed rigid flapping by the measured blade motion
+    β(ψ) = Σ (c_n cos nψ + s_n sin nψ) (n = 0 the mean, precone included; tip up positive), the
+    flap angle whose sine is the tip height over R (the wake's release height, the blade points
+    of the BVI loads) and whose rate enters U_P (:mod:`nps.bet`, the trim then meets the hub
+    moments with the aerodynamic first-harmonic flap moment).
     """
 
     name: str
@@ -54,6 +59,7 @@ class RotorGeometry:
     airfoils: Mapping[str, Airfoil] = field(default_factory=dict)
     higher_harmonic_pitch: tuple[tuple[int, float, float], ...] = ()
     elastic_twist_harmonics: tuple[tuple[int, float, float], ...] = ()
+    prescribed_flap_harmonics: tuple[tuple[int, float, float], ...] = ()
 
     def __post_init__(self):
         if self.blade is not None:
@@ -109,6 +115,17 @@ class RotorGeometry:
                       np.zeros_like(psi))
         return hhc + rbar * elastic
 
+    def prescribed_flap(self, psi_rad) -> tuple[np.ndarray, np.ndarray] | None:
+        """(β, dβ/dψ) in rad, (n_psi,), of ``prescribed_flap_harmonics`` at ``psi_rad``; None without them."""
+        if not self.prescribed_flap_harmonics:
+            return None
+        psi = np.asarray(psi_rad, dtype=float)
+        beta = sum((c * np.cos(n * psi) + s * np.sin(n * psi) for n, c, s in self.prescribed_flap_harmonics),
+                   np.zeros_like(psi))
+        rate = sum((n * (s * np.cos(n * psi) - c * np.sin(n * psi)) for n, c, s in self.prescribed_flap_harmonics),
+                   np.zeros_like(psi))
+        return beta, rate
+
     @classmethod
     def from_config(cls, rotor: Mapping) -> "RotorGeometry":
         """Build from one validated ``rotors[]`` entry of an aircraft configuration.
@@ -116,7 +133,8 @@ class RotorGeometry:
         Table paths (``airfoil.table``, ``airfoils.*.table``, ``blade.table``) are read as given
         (:func:`nps.config.load_aircraft` makes them absolute, relative to the aircraft file).
         Optional prescribed motion entries: ``higher_harmonic_pitch: [{n, amplitude_deg,
-        phase_deg}, ...]``, ``elastic_twist_harmonics: [{n, cos_deg, sin_deg}, ...]``.
+        phase_deg}, ...]``, ``elastic_twist_harmonics: [{n, cos_deg, sin_deg}, ...]``,
+        ``prescribed_flap: [{n, cos_deg, sin_deg}, ...]``.
         """
         name = str(rotor["name"])
         radius = float(rotor["radius_m"])
@@ -154,10 +172,14 @@ class RotorGeometry:
             higher_harmonic_pitch=tuple(
                 (int(h["n"]), math.radians(float(h["amplitude_deg"])), math.radians(float(h["phase_deg"])))
                 for h in rotor.get("higher_harmonic_pitch", ())),
-            elastic_twist_harmonics=tuple(
-                (int(h["n"]), math.radians(float(h["cos_deg"])), math.radians(float(h["sin_deg"])))
-                for h in rotor.get("elastic_twist_harmonics", ())),
+            elastic_twist_harmonics=_degree_harmonics(rotor.get("elastic_twist_harmonics", ())),
+            prescribed_flap_harmonics=_degree_harmonics(rotor.get("prescribed_flap", ())),
         )
+
+
+def _degree_harmonics(entries) -> tuple[tuple[int, float, float], ...]:
+    """Config harmonics ``[{n, cos_deg, sin_deg}, ...]`` as ((n, cos rad, sin rad), ...)."""
+    return tuple((int(h["n"]), math.radians(float(h["cos_deg"])), math.radians(float(h["sin_deg"]))) for h in entries)
 
 
 def airfoil_from_config(foil: Mapping, aspect_ratio: float) -> Airfoil:

@@ -6,6 +6,14 @@ c = 0.121 m, −8° linear twist, root cutout 0.44 m, Ω = 109.12 rad/s, V = 32.
 ρ = 1.2055 kg/m³, c0 = 341.7 m/s, Lock number 8. Assumptions (not in the data): NACA 23012
 lift slope 6.0 /rad and zero-lift angle −1.2°, equivalent flap-hinge offset 0.29 m
 (Bo105 hingeless rotor, ≈ 14.5 % R).
+
+Measured blade motion (:func:`case_setup`): the elastic twist, and the flap as the tip height
+over the hub plane, z_tip(ψ) = R sin β_p + z_el(ψ) cos β_p with the 2.5° precone β_p
+(opencopter_hart_ii_geometry.json5, "Coning angle") and the measured elastic tip deflection
+z_el = 1.575 m · tan f(ψ) (f: the "flap hinge" Fourier series of opencopter_hart_ii_params.json5,
+which OpenCOPTER fitted to the HART-II tip deflection data 100 z/R as atan(z/1.575 m) about its
+equivalent hinge 0.425 m from the hub), given to NPS as the flap angle β = asin(z_tip/R)
+(``RotorGeometry.prescribed_flap_harmonics``).
 """
 
 from __future__ import annotations
@@ -44,8 +52,9 @@ TRIM_ROW = dict(
 @dataclass(frozen=True)
 class Case:
     """One HART-II condition (opencopter_hart_ii_params.json5, shared validation set): shaft angle
-    (deg, aft), ρ, c0, Ω, targets T, M_x, M_y, the 3/rev HHC θ3 cos(3ψ − ψ3) and the measured
-    elastic-twist harmonics (n, cos, sin) in rad (tip values, linear along the span)."""
+    (deg, aft), ρ, c0, Ω, targets T, M_x, M_y, the 3/rev HHC θ3 cos(3ψ − ψ3), the measured
+    elastic-twist harmonics (n, cos, sin) in rad (tip values, linear along the span) and the
+    measured flap-hinge harmonics f(ψ) (n, cos, sin) in rad (module doc)."""
 
     name: str
     shaft_deg: float
@@ -58,6 +67,7 @@ class Case:
     theta3_deg: float
     psi3_deg: float
     elastic_twist: tuple
+    flap: tuple
 
 
 def _harmonics(cos, sin):
@@ -67,21 +77,42 @@ def _harmonics(cos, sin):
 CASES = {
     "BL": Case("BL", 4.3, 1.2055, 341.7, 109.12, 3300.0, 20.0, -20.0, 0.0, 300.0, _harmonics(
         [-0.009037, 0.002961, -0.009796, 0.0005252, 0.001129, -0.0006439, -0.0001786, -0.0004622],
-        [-0.003797, 5.21e-06, -0.000541, 0.001793, 0.0003353, -2.835e-05, -0.00036])),
+        [-0.003797, 5.21e-06, -0.000541, 0.001793, 0.0003353, -2.835e-05, -0.00036]), _harmonics(
+        [-0.007672, 0.002095, -0.0008852, -0.001253, -0.0001377], [-0.009844, -0.0004784, 0.001229, -1.665e-06])),
     "MN": Case("MN", 4.3, 1.1931, 342.2, 109.01, 3300.0, 30.0, -30.0, 0.8, 300.0, _harmonics(
         [-0.009094, 0.003301, -0.007287, 0.02032, 0.001536, 0.0007229, -0.001406],
-        [-0.00368, -0.001816, 0.009208, -0.001166, 0.0009517, 0.0008305])),
+        [-0.00368, -0.001816, 0.009208, -0.001166, 0.0009517, 0.0008305]), _harmonics(
+        [-0.007885, 0.004178, -0.002791, -0.005694, 7.409e-05, 0.0002689, 8.953e-05, 0.0001174, 8.001e-05],
+        [-0.01148, 0.002682, 0.003662, -8.164e-05, -9.473e-05, -6.167e-05, -6.646e-05, 7.512e-05])),
     "MV": Case("MV", 4.5, 1.1868, 343.0, 109.01, 3290.0, 20.0, -30.0, 0.8, 180.0, _harmonics(
         [-0.008342, 0.00214, -0.01411, -0.002624, -0.0006886, -0.0007247, -3.277e-05],
-        [-0.001991, 0.0008361, -0.02615, 0.001571, 0.001287, -6.494e-05])),
+        [-0.001991, 0.0008361, -0.02615, 0.001571, 0.001287, -6.494e-05]), _harmonics(
+        [-0.00689, 0.001587, 0.002895, 0.003974, -0.0002329, -0.0002362, -6.413e-05, -7.967e-05, 1.073e-05],
+        [-0.0103, -0.001023, 0.003785, 3.528e-05, 3.088e-05, 9.54e-06, -0.0001532, 3.409e-05])),
 }
 
 
-def case_setup(case: Case):
-    """(geometry with the prescribed blade motion, operating point, trim row) of a condition."""
+PRECONE_RAD = np.radians(2.5)
+FLAP_ARM_M = 1.575  # tip to OpenCOPTER's equivalent flap hinge (0.075 + 0.35 m from the hub)
+
+
+def tip_flap_harmonics(case: Case, n_max: int = 8, n_psi: int = 360) -> tuple:
+    """NPS flap harmonics (n, cos, sin) in rad of the measured tip height (module doc)."""
+    psi = 2.0 * np.pi * np.arange(n_psi) / n_psi
+    f = sum(c * np.cos(n * psi) + s * np.sin(n * psi) for n, c, s in case.flap)
+    z_tip = RADIUS_M * np.sin(PRECONE_RAD) + FLAP_ARM_M * np.tan(f) * np.cos(PRECONE_RAD)
+    spectrum = np.fft.rfft(np.arcsin(z_tip / RADIUS_M)) / n_psi
+    return tuple((n, float((1.0 if n == 0 else 2.0) * spectrum[n].real), float(-2.0 * spectrum[n].imag))
+                 for n in range(n_max + 1))
+
+
+def case_setup(case: Case, measured_flap: bool = True):
+    """(geometry with the prescribed blade motion, operating point, trim row) of a condition;
+    ``measured_flap`` False keeps NPS's rigid-flap solution instead of the measured tip motion."""
     from dataclasses import replace
 
     geometry = replace(GEOMETRY, elastic_twist_harmonics=case.elastic_twist,
+                       prescribed_flap_harmonics=tip_flap_harmonics(case) if measured_flap else (),
                        higher_harmonic_pitch=((3, np.radians(case.theta3_deg), np.radians(case.psi3_deg)),)
                        if case.theta3_deg else ())
     shaft = np.radians(case.shaft_deg)
@@ -215,13 +246,15 @@ class HartFreeResult:
 
 
 def run_free(n_psi: int = 360, n_r: int = 50, free_model: freewake.FreeWakeModel = freewake.FreeWakeModel(),
-             wake_model: wake.WakeModel | None = None, case: Case | None = None) -> HartFreeResult:
-    """The baseline (or ``case`` with its prescribed blade motion) with the free wake:
-    :func:`nps.interaction.aircraft_bvi_loads` on a one-rotor aircraft (hub at the origin, hub
-    frame = G axes)."""
+             wake_model: wake.WakeModel | None = None, case: Case | None = None,
+             measured_flap: bool = True) -> HartFreeResult:
+    """The baseline (or ``case`` with its measured blade motion, :func:`case_setup`) with the free
+    wake: :func:`nps.interaction.aircraft_bvi_loads` on a one-rotor aircraft (hub at the origin,
+    hub frame = G axes)."""
     import pandas as pd
 
-    geometry, op, trim_row = case_setup(case) if case is not None else (GEOMETRY, OPERATING_POINT, TRIM_ROW)
+    geometry, op, trim_row = (case_setup(case, measured_flap) if case is not None
+                              else (GEOMETRY, OPERATING_POINT, TRIM_ROW))
     trim = bet.trim_rotor(geometry, op, bet.DiskGrid(n_psi, n_r))
     row = dict(trim_row, rotor="hart_ii", ct=trim.totals.ct, thrust_N=op.thrust_N,
                roll_moment_Nm=op.roll_moment_Nm, pitch_moment_Nm=op.pitch_moment_Nm,
@@ -232,8 +265,8 @@ def run_free(n_psi: int = 360, n_r: int = 50, free_model: freewake.FreeWakeModel
                   airfoil=dict(lift_slope_per_rad=6.0, alpha0_deg=-1.2),
                   higher_harmonic_pitch=[dict(n=n, amplitude_deg=np.degrees(a), phase_deg=np.degrees(p))
                                          for n, a, p in geometry.higher_harmonic_pitch],
-                  elastic_twist_harmonics=[dict(n=n, cos_deg=np.degrees(c), sin_deg=np.degrees(s))
-                                           for n, c, s in geometry.elastic_twist_harmonics])
+                  elastic_twist_harmonics=_degrees(geometry.elastic_twist_harmonics),
+                  prescribed_flap=_degrees(geometry.prescribed_flap_harmonics))
     result = interaction.aircraft_bvi_loads(pd.DataFrame([row]), {"hart_ii": config}, {"hart_ii": trim.disk},
                                             {"hart_ii": trim.summary()}, wake_model or wake.WakeModel(steps_per_rev=n_psi),
                                             free_model)
@@ -242,6 +275,11 @@ def run_free(n_psi: int = 360, n_r: int = 50, free_model: freewake.FreeWakeModel
     j = int(np.argmin(np.abs(grid.r_m / RADIUS_M - R_OVER_R)))
     fz = disk["fz_N_per_m"].to_numpy().reshape(grid.shape)[:, j]
     return HartFreeResult(trim, result, np.degrees(grid.psi_rad), cn_m2(fz, op.density_kg_m3, op.speed_of_sound_mps))
+
+
+def _degrees(harmonics) -> list[dict]:
+    """Config entries ``[{n, cos_deg, sin_deg}]`` of harmonics (n, cos rad, sin rad)."""
+    return [dict(n=n, cos_deg=np.degrees(c), sin_deg=np.degrees(s)) for n, c, s in harmonics]
 
 
 def piv_miss_distances_free(solution: freewake.FreeWakeSolution) -> list[tuple]:
