@@ -1,16 +1,19 @@
 """HART-II baseline (BL) with the free wake (issue 12), against the measured M²C_n at r/R = 0.87
-and the PIV tip-vortex positions (tests/data/hart_ii). Case: tests/validation/hart_ii_case.py,
+and the PIV tip-vortex positions (tests/data/hart_ii). Case: tests/validation/hart_ii_case.py
+with the measured blade motion (elastic twist and flap with the 2.5° precone, ``CASES["BL"]``),
 360 × 50 disk, 1° load segments, 10° relaxation grid (``FreeWakeModel`` defaults).
 
-Measured at the time of writing (Beddoes wake in brackets, docs/models/wake_bvi.md):
-- advancing window 30°–80°: high-passed peak-to-peak 0.0503 vs measured 0.0217 (×2.31 [×2.1]),
-  best-correlation lag −0.8° (ρ = 0.87) [−9.0°];
-- retreating window 280°–330°: 0.0416 vs 0.0354 (×1.17 [×1.09]), lag −3.9° (ρ = 0.76) [+7.1°];
-- PIV miss distance mean 0.155 m [0.148 m], vortices 0.063 m too low on average [0.094 m];
-- halving the relaxation step (10° → 5°): peak |ΔU_P| 5.118 → 5.143 m/s (0.5 %).
-Issue targets: phase within 5° met in both windows, retreating amplitude within 30 % met;
-advancing amplitude (×2.31) and PIV miss < 0.05 m not met. The tests assert the measured state
-with margins and that the free wake lifts the vortices toward the measured positions.
+Measured at the time of writing (docs/models/wake_bvi.md, "Validation"; rigid-flap model in
+brackets):
+- advancing window 30°–80°: high-passed peak-to-peak 0.0439 vs measured 0.0217 (×2.02 [×1.96]),
+  best-correlation lag +8.9° (ρ = 0.86) [+9.1°];
+- retreating window 280°–330°: 0.0393 vs 0.0354 (×1.11 [×1.06]), lag −4.1° (ρ = 0.76) [−3.9°];
+- PIV miss distance mean 0.156 m [0.158 m]; vortices 0.065 m too low on average [0.071 m],
+  retreating side 0.035 m [0.057 m], advancing side 0.081 m [0.079 m].
+Issue targets met: retreating amplitude within 30 %, retreating phase within 5°. Not met:
+advancing amplitude (×2.02), advancing phase (+8.9°), PIV miss < 0.05 m (causes in the docs).
+The tests assert the measured state with margins, that the measured flap lifts the
+retreating-side vortices toward the PIV positions, and the convergence in the relaxation step.
 """
 
 import os
@@ -27,7 +30,11 @@ pytestmark = pytest.mark.slow
 
 @pytest.fixture(scope="module")
 def free():
-    return h.run_free()
+    return h.run_free(case=h.CASES["BL"])
+
+
+def _mean_dz(records, side):
+    return np.mean([r[6] - r[4] for r in records if r[0] == side])
 
 
 def test_converged(free):
@@ -37,27 +44,32 @@ def test_converged(free):
 
 
 def test_bvi_amplitude_and_phase(free):
-    """Both windows: correlation ρ ≥ 0.7 at a lag within ±10°, peak-to-peak within a factor 2.5."""
-    for lo, hi, lag, rho, p2p_model, p2p_meas in h.window_comparison(free.psi_deg, free.cn_bvi):
-        assert abs(lag) <= 10.0 and rho >= 0.7, (lo, hi, lag, rho)
-        assert p2p_meas / 2.5 <= p2p_model <= 2.5 * p2p_meas, (lo, hi, p2p_model, p2p_meas)
+    """Retreating window: peak-to-peak within 30 % and lag within 5° (issue targets, met).
+    Advancing window: ρ ≥ 0.8 at a lag within 10°, peak-to-peak within ×2.3 (target ±30 % not met)."""
+    (_, _, lag_a, rho_a, p2p_a, meas_a), (_, _, lag_r, rho_r, p2p_r, meas_r) = h.window_comparison(free.psi_deg, free.cn_bvi)
+    assert abs(p2p_r / meas_r - 1.0) < 0.30 and abs(lag_r) <= 5.0 and rho_r >= 0.7, (p2p_r, meas_r, lag_r, rho_r)
+    assert abs(lag_a) <= 10.0 and rho_a >= 0.8, (lag_a, rho_a)
+    assert meas_a <= p2p_a <= 2.3 * meas_a, (p2p_a, meas_a)
 
 
 def test_piv_vortex_positions(free):
-    """Mean miss distance below 0.2 m and the vortices higher (closer to the measured ones) than
-    the Beddoes wake puts them."""
+    """Mean miss distance below 0.17 m; the vortices higher (closer to the measured ones) than the
+    Beddoes wake puts them; the measured flap (precone, tip down on the advancing side, up on the
+    retreating side) lifts the retreating-side vortices by > 1 cm against the rigid-flap model."""
     records = h.piv_miss_distances_free(free.result.solution)
     miss = np.array([r[-1] for r in records])
     dz_free = np.mean([r[6] - r[4] for r in records])
     beddoes = h.piv_miss_distances(h.run(n_psi=72, n_r=20).state, wake.WakeModel())
     dz_beddoes = np.mean([r[6] - r[4] for r in beddoes])
-    assert len(records) == 46 and miss.mean() < 0.2
+    assert len(records) == 46 and miss.mean() < 0.17
     assert dz_beddoes < dz_free < 0.0
+    rigid = h.piv_miss_distances_free(h.run_free(case=h.CASES["BL"], measured_flap=False).result.solution)
+    assert _mean_dz(records, "retreating") > _mean_dz(rigid, "retreating") + 0.01
 
 
 def test_halving_the_relaxation_step(free):
     """10° → 5° relaxation grid changes the peak BVI |ΔU_P| on the disk by < 5 %."""
-    fine = h.run_free(free_model=freewake.FreeWakeModel(steps_per_rev=72))
+    fine = h.run_free(case=h.CASES["BL"], free_model=freewake.FreeWakeModel(steps_per_rev=72))
     coarse_peak = np.abs(free.result.results["hart_ii"].d_up_mps).max()
     fine_peak = np.abs(fine.result.results["hart_ii"].d_up_mps).max()
     assert abs(coarse_peak / fine_peak - 1.0) < 0.05
@@ -74,8 +86,8 @@ def test_write_figure(free, tmp_path):
     fig, axes = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
     for ax, filt in zip(axes, (lambda v: v, h.high_pass)):
         ax.plot(pm, filt(cm), "k", lw=1.2, label="measured (HART-II BL)")
-        ax.plot(beddoes.psi_deg, filt(beddoes.cn_bvi), lw=0.9, label="NPS, Beddoes wake")
-        ax.plot(free.psi_deg, filt(free.cn_bvi), lw=0.9, label="NPS, free wake")
+        ax.plot(beddoes.psi_deg, filt(beddoes.cn_bvi), lw=0.9, label="NPS, Beddoes wake (rigid blade)")
+        ax.plot(free.psi_deg, filt(free.cn_bvi), lw=0.9, label="NPS, free wake (measured blade motion)")
     axes[0].set_ylabel("M²C_n")
     axes[1].set_ylabel("M²C_n, ≥ 10/rev")
     axes[1].set_xlabel("ψ (deg)")
