@@ -85,7 +85,8 @@ def test_write_figure(cases, rigid_flap, tmp_path):
         for k, (key, values) in enumerate(bars.items()):
             ax.bar(x + (k - 1) * 0.27, values, 0.27, label=key, color=("k", "C1", "C0")[k])
         ax.set_xticks(x, NAMES)
-        ax.set_ylabel(f"peak-to-peak ≥ 10/rev, {label}")
+        ax.set_ylabel("peak-to-peak, ≥ 10/rev")
+        ax.set_title(label, fontsize=10)
         if col == 0:
             ax.legend(fontsize=8)
     fig.suptitle("HART-II r/R = 0.87: baseline, minimum-noise and minimum-vibration HHC (free wake)")
