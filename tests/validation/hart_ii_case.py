@@ -283,5 +283,7 @@ def _degrees(harmonics) -> list[dict]:
 
 
 def piv_miss_distances_free(solution: freewake.FreeWakeSolution) -> list[tuple]:
-    """As :func:`piv_miss_distances` for the relaxed free wake (its nodes on the relaxation grid)."""
-    return _miss_distances(lambda psi: freewake.snapshot_nodes(solution, solution.rotors[0].name, psi))
+    """As :func:`piv_miss_distances` for the relaxed free wake as the blade loads see it
+    (:func:`nps.freewake.wake_snapshot`: the Beddoes model's age grid and length, 1° over 4
+    revolutions, free and far wake, the last distortion kept beyond them)."""
+    return _miss_distances(lambda psi: freewake.wake_snapshot(solution, solution.rotors[0].name, psi).nodes_m)

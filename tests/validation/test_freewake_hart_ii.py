@@ -8,10 +8,12 @@ brackets):
 - advancing window 30°–80°: high-passed peak-to-peak 0.0439 vs measured 0.0217 (×2.02 [×1.96]),
   best-correlation lag +8.9° (ρ = 0.86) [+9.1°];
 - retreating window 280°–330°: 0.0393 vs 0.0354 (×1.11 [×1.06]), lag −4.1° (ρ = 0.76) [−3.9°];
-- PIV miss distance mean 0.156 m [0.158 m]; vortices 0.065 m too low on average [0.071 m],
-  retreating side 0.035 m [0.057 m], advancing side 0.081 m [0.079 m].
+- PIV miss distance mean 0.142 m [0.144 m] (wake as the loads see it, 4 revolutions); vortices
+  0.066 m too low on average [0.073 m], retreating side 0.035 m [0.057 m], advancing side
+  0.082 m [0.082 m].
 Issue targets met: retreating amplitude within 30 %, retreating phase within 5°. Not met:
-advancing amplitude (×2.02), advancing phase (+8.9°), PIV miss < 0.05 m (causes in the docs).
+advancing amplitude (×2.02), advancing phase (+8.9°), PIV miss < 0.05 m (0.142 m; causes in
+the docs).
 The tests assert the measured state with margins, that the measured flap lifts the
 retreating-side vortices toward the PIV positions, and the convergence in the relaxation step.
 """
@@ -53,7 +55,7 @@ def test_bvi_amplitude_and_phase(free):
 
 
 def test_piv_vortex_positions(free):
-    """Mean miss distance below 0.17 m; the vortices higher (closer to the measured ones) than the
+    """Mean miss distance below 0.15 m; the vortices higher (closer to the measured ones) than the
     Beddoes wake puts them; the measured flap (precone, tip down on the advancing side, up on the
     retreating side) lifts the retreating-side vortices by > 1 cm against the rigid-flap model."""
     records = h.piv_miss_distances_free(free.result.solution)
@@ -61,7 +63,7 @@ def test_piv_vortex_positions(free):
     dz_free = np.mean([r[6] - r[4] for r in records])
     beddoes = h.piv_miss_distances(h.run(n_psi=72, n_r=20).state, wake.WakeModel())
     dz_beddoes = np.mean([r[6] - r[4] for r in beddoes])
-    assert len(records) == 46 and miss.mean() < 0.17
+    assert len(records) == 46 and miss.mean() < 0.15
     assert dz_beddoes < dz_free < 0.0
     rigid = h.piv_miss_distances_free(h.run_free(case=h.CASES["BL"], measured_flap=False).result.solution)
     assert _mean_dz(records, "retreating") > _mean_dz(rigid, "retreating") + 0.01
