@@ -23,8 +23,12 @@ interpolated linearly (periodic) in ψ and linearly in φ.
 
 Far wake: the free wake is continued by ``far_revolutions`` turns convected rigidly with the
 mean velocity of the last free turn, X[i, J+m] = X[i−m, J] + m Δt V̄_J (Δt = Δ/Ω, V̄_J the
-mean over ψ of V[·, J]), so that the end of the free wake is not a truncated helix (which
-would halve the downwash there) and the old, rolled-up wake cannot wander.
+mean over ψ of V[·, J]), so that the old, rolled-up wake cannot wander. Beyond it the wake
+continues to infinity as a semi-infinite vortex cylinder (:func:`_continuation_rings`,
+``continuation_radii``) with the radius and centre of the last turn, convected with the free
+stream plus the momentum-theory velocity of its own circulation, integrated with vortex rings
+parallel to the disk. It enters the node kinematics only (a truncated helix induces half the
+far value at its end; a hover wake needs the downwash of the whole slipstream below).
 
 Discretisation (Bagai & Leishman 1995, five-point central difference about (i−½, j−½), with
 Δψ = Δφ the ψ and φ differences combine into a march along the characteristic i − j):
@@ -51,6 +55,7 @@ from dataclasses import dataclass
 from typing import Mapping, Sequence
 
 import numpy as np
+from scipy import special
 
 from nps import wake
 from nps.jit import kernel, prange
@@ -75,7 +80,9 @@ class FreeWakeModel:
     """Parameters of the free-wake relaxation (SI; docs/models/wake_bvi.md).
 
     ``steps_per_rev`` N: relaxation grid Δψ = Δφ = 2π/N; ``revolutions``: free (relaxed) wake
-    age; ``far_revolutions``: rigid far wake after it; ``core_radius_chords``: initial physical
+    age; ``far_revolutions``: rigid far wake after it; ``continuation_radii``: length (in radii
+    R of the source rotor) of the semi-infinite vortex-cylinder continuation beyond the far wake
+    in the node kinematics (0: none); ``core_radius_chords``: initial physical
     core r_c0/c; ``core_floor_chords``: lower bound of r_c0/c in the node kinematics (the
     resolution of the straight-segment wake on the relaxation grid; docs); ``core_growth``
     with ``growth_a1`` and ``viscosity_m2_s``; ``relaxation`` ω in (0, 1]; ``tolerance_radius_fraction``:
@@ -86,6 +93,7 @@ class FreeWakeModel:
     steps_per_rev: int = 36
     revolutions: float = 1.5
     far_revolutions: float = 1.0
+    continuation_radii: float = 50.0
     core_radius_chords: float = HART_II_CORE_RADIUS_CHORDS
     core_floor_chords: float = 1.0
     core_growth: bool = True
@@ -101,6 +109,7 @@ class FreeWakeModel:
             "steps_per_rev": self.steps_per_rev >= 8,
             "revolutions": self.revolutions > 0.0,
             "far_revolutions": self.far_revolutions >= 0.0,
+            "continuation_radii": self.continuation_radii >= 0.0,
             "core_radius_chords": self.core_radius_chords > 0.0,
             "core_floor_chords": self.core_floor_chords >= 0.0,
             "growth_a1": self.growth_a1 >= 0.0,
@@ -452,13 +461,103 @@ def _beddoes_table(p, gamma, beta, n_psi, n_age, step):
 
 def _node_velocities(rotors, beddoes, model, base, distortion) -> list[np.ndarray]:
     """Velocity (N, J+1, 3) of every rotor's free nodes in its own H' (m/s): free stream +
-    all wakes (free and far parts)."""
+    all wakes (free and far parts and the semi-infinite continuation)."""
     sources = _physical_sources(rotors, beddoes, model, distortion)
     psi = np.arange(model.steps_per_rev) * model.step_rad
     free = model.n_age + 1
-    v = _induced(rotors, sources, range(len(rotors)), base[:, :, :free] + distortion[:, :, :free], psi,
+    points = base[:, :, :free] + distortion[:, :, :free]
+    v = _induced(rotors, sources, range(len(rotors)), points, psi,
                  model.n_age + model.n_far, model.step_rad, model.step_rad, model.vatistas_n, True).sum(axis=1)
-    return [v[q] + r.free_stream_hp_mps for q, r in enumerate(rotors)]
+    rings = [_continuation_rings(r, base[q] + distortion[q], sources.gamma[q], sources.core[q, 0], model)
+             for q, r in enumerate(rotors)]
+    out = []
+    for t, r in enumerate(rotors):
+        rot, off, sign = _transforms(rotors, t)
+        flat = points[t].reshape(-1, 3)
+        far = np.zeros_like(flat)
+        for q, ring in enumerate(rings):
+            if ring is not None:
+                far += _ring_velocity(flat, ring[0] @ rot[q].T + off[q], rot[q][:, 2], ring[1], sign[q] * ring[2], ring[3])
+        out.append(v[t] + r.free_stream_hp_mps + far.reshape(points[t].shape))
+    return out
+
+
+# Growth ratio of the ring intervals of the far-wake continuation: the first interval is one
+# blade passage (L/B), each next one 1.25 times longer (the cylinder's field is smooth there;
+# on-axis velocity of the ring sum within 1 % of the exact semi-infinite cylinder, unit test).
+CONTINUATION_GROWTH = 1.25
+
+
+def _continuation_rings(rotor: RotorPlacement, x: np.ndarray, gamma_table: np.ndarray, core_m: float,
+                        model: FreeWakeModel):
+    """Vortex rings (centres (M, 3), radius m, circulations (M,) m²/s, core m) continuing the
+    rotor's wake x (N, J+1, 3) (own H') as a semi-infinite vortex cylinder; ``None`` when off
+    or when the tip vortices carry no lift (Γ̄ ≤ 0).
+
+    The cylinder convects with V_c = V_∞ − λ_Γ Ω R e_z, λ_Γ from Glauert's momentum relation
+    (:func:`nps.wake.mean_inflow`) at the circulation's thrust coefficient
+    C_T,Γ = B Γ̄/(2π Ω R²) (Γ̄: ψ-mean tip-vortex strength): the self-induced velocity
+    w = γ/2 of the tip vortices of an infinite cylinder with γ = B Γ̄/L, L = 2π|V_c|/Ω the
+    advance per revolution, satisfies w |V_c| = B Γ̄ Ω/(4π), which is that relation. The
+    cylinder starts at the centre c₀ of the wake's last turn with its mean radius a (disk
+    plane); its azimuthal vorticity γ (circulation about +z negative: the flow through it goes
+    down, as the tip vortices') is lumped into rings at the midpoints of intervals along
+    V_c, the first L/B long, each next ``CONTINUATION_GROWTH`` times longer, up to
+    ``continuation_radii`` R. The longitudinal (swirl) part of the helix is not continued.
+    V_c and γ do not depend on the iterate (no feedback from the wake's end).
+    """
+    s = rotor.state
+    length = model.continuation_radii * s.radius_m
+    gamma_mean = float(np.mean(gamma_table))
+    if length == 0.0 or not gamma_mean > 0.0:
+        return None
+    ct_gamma = s.n_blades * gamma_mean / (2.0 * np.pi * s.omega_rad_s * s.radius_m**2)
+    lam = wake.mean_inflow(ct_gamma, s.mu_inplane, s.mu_z)
+    velocity = rotor.free_stream_hp_mps - np.array([0.0, 0.0, lam * s.omega_rad_s * s.radius_m])
+    speed = float(np.linalg.norm(velocity))
+    per_rev = 2.0 * np.pi * speed / s.omega_rad_s
+    widths = [per_rev / s.n_blades]
+    while sum(widths) < length:
+        widths.append(widths[-1] * CONTINUATION_GROWTH)
+    widths = np.array(widths)
+    mid = np.cumsum(widths) - 0.5 * widths
+    centre = x[:, -1].mean(axis=0)
+    radius = float(np.hypot(x[:, -1, 0] - centre[0], x[:, -1, 1] - centre[1]).mean())
+    centres = centre + mid[:, None] * (velocity / speed)
+    gamma = -s.n_blades * gamma_mean / per_rev * widths
+    return centres, radius, gamma, float(core_m)
+
+
+def _ring_velocity(points: np.ndarray, centres: np.ndarray, axis: np.ndarray, radius_m: float, gamma_m2_s: np.ndarray,
+                   core_m: float) -> np.ndarray:
+    """Velocity (P, 3) (m/s) at ``points`` (P, 3) induced by circular vortex rings of radius
+    ``radius_m``, centres (M, 3), common unit ``axis`` (3,), circulations (M,) right-handed about
+    the axis (any frame, metres). Exact ring field (Lamb, Hydrodynamics §161; K, E complete
+    elliptic integrals of parameter m), with ρ, z the point's radial and axial offsets:
+
+        A = (ρ+a)² + z²,  b² = (ρ−a)² + z²,  m = 4aρ/A,
+        u_z = Γ/(2π√A) [K + (a² − ρ² − z²) E/b²],  u_ρ = Γ z/(2πρ√A) [−K + (a² + ρ² + z²) E/b²],
+
+    times b²/(b² + r_c²) (a core: finite on the filament). Near the axis u_ρ is evaluated as
+    Γ z/(2π√A) [(E − K)/ρ + 2aE/b²] with the series (E − K)/ρ = −(πa/A)(1 + 3m/8 + 15m²/64)
+    for m < 1e-3 (no cancellation)."""
+    d = points[:, None, :] - centres[None, :, :]
+    z = d @ axis
+    radial = d - z[..., None] * axis
+    rho = np.linalg.norm(radial, axis=-1)
+    a = radius_m
+    a_sq = (rho + a) ** 2 + z**2
+    b_sq = (rho - a) ** 2 + z**2
+    m = np.minimum(4.0 * a * rho / a_sq, 1.0 - 1e-12)
+    k, e = special.ellipk(m), special.ellipe(m)
+    rho_safe = np.where(rho > 0.0, rho, 1.0)
+    e_minus_k_over_rho = np.where(m < 1e-3, -np.pi * a / a_sq * (1.0 + 3.0 * m / 8.0 + 15.0 * m * m / 64.0),
+                                  (e - k) / rho_safe)
+    scale = gamma_m2_s / (2.0 * np.pi * np.sqrt(a_sq)) / (b_sq + core_m**2)
+    u_z = scale * (b_sq * k + (a * a - rho**2 - z**2) * e)
+    u_r = scale * z * (b_sq * e_minus_k_over_rho + 2.0 * a * e)
+    radial = radial / rho_safe[..., None]
+    return (u_z[..., None] * axis + u_r[..., None] * radial).sum(axis=1)
 
 
 def _march(x_old: np.ndarray, velocity: np.ndarray, step_time_s: float) -> np.ndarray:

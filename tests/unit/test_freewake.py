@@ -116,3 +116,45 @@ def test_model_from_config():
     assert freewake.FreeWakeModel.from_config({"steps_per_rev": 72}).steps_per_rev == 72
     with pytest.raises(ValueError, match="unknown field"):
         freewake.FreeWakeModel.from_config({"steps": 72})
+
+
+def test_ring_velocity_is_the_exact_ring_field():
+    """One ring: Γ/(2a) at its centre along the axis (right-handed), and at an off-axis point
+    the same velocity as a 2000-segment polygon of the ring (Biot–Savart, no core)."""
+    axis = np.array([0.0, 0.0, 1.0])
+    centre = freewake._ring_velocity(np.zeros((1, 3)), np.zeros((1, 3)), axis, 2.0, np.array([1.0]), 0.0)[0]
+    assert centre == pytest.approx([0.0, 0.0, 0.25], abs=1e-12)
+    theta = np.linspace(0.0, 2.0 * np.pi, 2001)
+    polygon = np.stack([np.cos(theta), np.sin(theta), np.zeros_like(theta)], axis=1)
+    point = np.array([[0.3, 0.2, 0.5]])
+    exact = wake.segment_induced_velocity(point, polygon[:-1], polygon[1:], np.ones(2000), 0.0)[0]
+    ring = freewake._ring_velocity(point, np.zeros((1, 3)), axis, 1.0, np.array([1.0]), 0.0)[0]
+    assert ring == pytest.approx(exact, rel=1e-5)
+
+
+def test_continuation_is_a_semi_infinite_cylinder():
+    """Hover continuation rings of a 4-bladed rotor against the exact on-axis velocity of a
+    semi-infinite vortex cylinder, w = (γ/2)(1 − h/√(h² + a²)) at height h above its start
+    (γ = B Γ̄/L): within 1.5 %; the advance per revolution L satisfies Glauert's momentum
+    relation at C_T,Γ = B Γ̄/(2π Ω R²) (hover: L = 2π R √(C_T,Γ/2))."""
+    gamma_v, radius, omega = 1.0, 1.0, 100.0
+    state = wake.WakeState(radius_m=radius, n_blades=4, chord_m=0.07, omega_rad_s=omega, rotation_sign=1, mu_x=0.0,
+                           mu_y=0.0, mu_z=0.0, ct=0.005, gamma_table_m2_s=np.full(8, gamma_v), beta_table_rad=np.zeros(8))
+    placement = freewake.RotorPlacement("r", state, np.zeros(3), np.eye(3))
+    a = 0.8
+    last_turn = np.stack([a * np.cos(np.linspace(0, 2 * np.pi, 36, endpoint=False)),
+                          a * np.sin(np.linspace(0, 2 * np.pi, 36, endpoint=False)), np.full(36, -2.0)], axis=1)
+    x = np.stack([last_turn, last_turn], axis=1)
+    centres, ring_radius, circulation, _ = freewake._continuation_rings(placement, x, state.gamma_table_m2_s, 0.0,
+                                                                       freewake.FreeWakeModel())
+    ct_gamma = 4 * gamma_v / (2.0 * np.pi * omega * radius**2)
+    per_rev = 2.0 * np.pi * radius * np.sqrt(ct_gamma / 2.0)
+    assert ring_radius == pytest.approx(a)
+    assert np.diff(centres[:, 2])[0] == pytest.approx(-per_rev * (1 + 1.25) / 8)
+    gamma_sheet = 4 * gamma_v / per_rev
+    for h in (0.0, 0.3, 1.0):
+        w = freewake._ring_velocity(np.array([[0.0, 0.0, -2.0 + h]]), centres, np.array([0.0, 0.0, 1.0]), ring_radius,
+                                    circulation, 0.0)[0]
+        exact = -0.5 * gamma_sheet * (1.0 - h / np.hypot(h, a))
+        assert w[2] == pytest.approx(exact, rel=0.015)
+        assert np.abs(w[:2]).max() < 1e-9
