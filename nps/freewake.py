@@ -55,7 +55,6 @@ from dataclasses import dataclass
 from typing import Mapping, Sequence
 
 import numpy as np
-from scipy import special
 
 from nps import wake
 from nps.jit import kernel, prange
@@ -538,26 +537,55 @@ def _ring_velocity(points: np.ndarray, centres: np.ndarray, axis: np.ndarray, ra
         A = (ρ+a)² + z²,  b² = (ρ−a)² + z²,  m = 4aρ/A,
         u_z = Γ/(2π√A) [K + (a² − ρ² − z²) E/b²],  u_ρ = Γ z/(2πρ√A) [−K + (a² + ρ² + z²) E/b²],
 
-    times b²/(b² + r_c²) (a core: finite on the filament). Near the axis u_ρ is evaluated as
-    Γ z/(2π√A) [(E − K)/ρ + 2aE/b²] with the series (E − K)/ρ = −(πa/A)(1 + 3m/8 + 15m²/64)
-    for m < 1e-3 (no cancellation)."""
-    d = points[:, None, :] - centres[None, :, :]
-    z = d @ axis
-    radial = d - z[..., None] * axis
-    rho = np.linalg.norm(radial, axis=-1)
-    a = radius_m
-    a_sq = (rho + a) ** 2 + z**2
-    b_sq = (rho - a) ** 2 + z**2
-    m = np.minimum(4.0 * a * rho / a_sq, 1.0 - 1e-12)
-    k, e = special.ellipk(m), special.ellipe(m)
-    rho_safe = np.where(rho > 0.0, rho, 1.0)
-    e_minus_k_over_rho = np.where(m < 1e-3, -np.pi * a / a_sq * (1.0 + 3.0 * m / 8.0 + 15.0 * m * m / 64.0),
-                                  (e - k) / rho_safe)
-    scale = gamma_m2_s / (2.0 * np.pi * np.sqrt(a_sq)) / (b_sq + core_m**2)
-    u_z = scale * (b_sq * k + (a * a - rho**2 - z**2) * e)
-    u_r = scale * z * (b_sq * e_minus_k_over_rho + 2.0 * a * e)
-    radial = radial / rho_safe[..., None]
-    return (u_z[..., None] * axis + u_r[..., None] * radial).sum(axis=1)
+    times b²/(b² + r_c²) (a core: finite on the filament). u_ρ is evaluated as
+    Γ z/(2π√A) [(E − K)/ρ + 2aE/b²], with the series (E − K)/ρ = −(πa/A)(1 + 3m/8 + 15m²/64)
+    for m < 1e-3 (no cancellation near the axis)."""
+    return _rings_kernel(np.ascontiguousarray(points, dtype=float), np.ascontiguousarray(centres, dtype=float),
+                         np.ascontiguousarray(axis, dtype=float), float(radius_m),
+                         np.ascontiguousarray(gamma_m2_s, dtype=float), float(core_m))
+
+
+@kernel(inline=True)
+def _elliptic_ke(m):
+    """Complete elliptic integrals K(m), E(m), 0 ≤ m < 1: Hastings' polynomial approximations,
+    Abramowitz & Stegun 17.3.34 and 17.3.36 (|error| ≤ 2e-8), m₁ = 1 − m."""
+    m1 = 1.0 - m
+    log = -math.log(m1)
+    k = (1.38629436112 + m1 * (0.09666344259 + m1 * (0.03590092383 + m1 * (0.03742563713 + m1 * 0.01451196212)))
+         + log * (0.5 + m1 * (0.12498593597 + m1 * (0.06880248576 + m1 * (0.03328355346 + m1 * 0.00441787012)))))
+    e = (1.0 + m1 * (0.44325141463 + m1 * (0.06260601220 + m1 * (0.04757383546 + m1 * 0.01736506451)))
+         + log * m1 * (0.24998368310 + m1 * (0.09200180037 + m1 * (0.04069697526 + m1 * 0.00526449639))))
+    return k, e
+
+
+@kernel
+def _rings_kernel(points, centres, axis, a, gamma, core):
+    out = np.zeros_like(points)
+    for i in range(points.shape[0]):
+        vx = vy = vz = 0.0
+        for j in range(centres.shape[0]):
+            dx, dy, dz = points[i, 0] - centres[j, 0], points[i, 1] - centres[j, 1], points[i, 2] - centres[j, 2]
+            z = dx * axis[0] + dy * axis[1] + dz * axis[2]
+            rx, ry, rz = dx - z * axis[0], dy - z * axis[1], dz - z * axis[2]
+            rho = math.sqrt(rx * rx + ry * ry + rz * rz)
+            a_sq = (rho + a) ** 2 + z * z
+            b_sq = (rho - a) ** 2 + z * z
+            m = min(4.0 * a * rho / a_sq, 1.0 - 1e-12)
+            k, e = _elliptic_ke(m)
+            scale = gamma[j] / (2.0 * math.pi * math.sqrt(a_sq)) / (b_sq + core * core)
+            u_z = scale * (b_sq * k + (a * a - rho * rho - z * z) * e)
+            if m < 1e-3:
+                e_minus_k_over_rho = -math.pi * a / a_sq * (1.0 + 3.0 * m / 8.0 + 15.0 * m * m / 64.0)
+            else:
+                e_minus_k_over_rho = (e - k) / rho
+            u_r = scale * z * (b_sq * e_minus_k_over_rho + 2.0 * a * e)
+            if rho > 0.0:
+                u_r /= rho
+            vx += u_z * axis[0] + u_r * rx
+            vy += u_z * axis[1] + u_r * ry
+            vz += u_z * axis[2] + u_r * rz
+        out[i, 0], out[i, 1], out[i, 2] = vx, vy, vz
+    return out
 
 
 def _march(x_old: np.ndarray, velocity: np.ndarray, step_time_s: float) -> np.ndarray:
