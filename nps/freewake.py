@@ -12,7 +12,8 @@ the initial guess, so that the first iterate gives exactly today's Beddoes resul
 
 Kinematics. In the frame moving with the aircraft every node moves with the local flow:
 
-    Ω_q (∂X/∂ψ + ∂X/∂φ) = V_∞,q + Σ_{rotors p} Σ_{blades} V_BS(X; tip and bound vortex of p)
+    Ω_q (∂X/∂ψ + ∂X/∂φ) = V_∞,q + Σ_{rotors p} [Σ_{blades} V_BS(X; tip and bound vortex of p)
+                                                 + V_rings(X; far-wake continuation of p)]
 
 V_∞,q = Ω_q R_q (μ_x, s μ_y, −μ_z) (NPS signs, H'_q), V_BS the Biot–Savart velocity of
 straight segments with a Vatistas core (:func:`nps.wake._segment`); a blade's bound vortex
