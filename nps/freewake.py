@@ -29,7 +29,8 @@ continues to infinity as a semi-infinite vortex cylinder (:func:`_continuation_r
 ``continuation_radii``) with the radius and centre of the last turn, convected with the free
 stream plus the momentum-theory velocity of its own circulation, integrated with vortex rings
 parallel to the disk. It enters the node kinematics only (a truncated helix induces half the
-far value at its end; a hover wake needs the downwash of the whole slipstream below).
+far value at its end; a hover wake needs the downwash of the whole slipstream below). Off by
+default: it moves the HART-II results that depend on the wake's truncation (docs).
 
 Discretisation (Bagai & Leishman 1995, five-point central difference about (i−½, j−½), with
 Δψ = Δφ the ψ and φ differences combine into a march along the characteristic i − j):
@@ -82,7 +83,7 @@ class FreeWakeModel:
     ``steps_per_rev`` N: relaxation grid Δψ = Δφ = 2π/N; ``revolutions``: free (relaxed) wake
     age; ``far_revolutions``: rigid far wake after it; ``continuation_radii``: length (in radii
     R of the source rotor) of the semi-infinite vortex-cylinder continuation beyond the far wake
-    in the node kinematics (0: none); ``core_radius_chords``: initial physical
+    in the node kinematics (0, the default: none; docs for why); ``core_radius_chords``: initial physical
     core r_c0/c; ``core_floor_chords``: lower bound of r_c0/c in the node kinematics (the
     resolution of the straight-segment wake on the relaxation grid; docs); ``core_growth``
     with ``growth_a1`` and ``viscosity_m2_s``; ``relaxation`` ω in (0, 1]; ``tolerance_radius_fraction``:
@@ -93,7 +94,7 @@ class FreeWakeModel:
     steps_per_rev: int = 36
     revolutions: float = 1.5
     far_revolutions: float = 1.0
-    continuation_radii: float = 50.0
+    continuation_radii: float = 0.0
     core_radius_chords: float = HART_II_CORE_RADIUS_CHORDS
     core_floor_chords: float = 1.0
     core_growth: bool = True

@@ -139,14 +139,15 @@ def test_continuation_is_a_semi_infinite_cylinder():
     relation at C_T,Γ = B Γ̄/(2π Ω R²) (hover: L = 2π R √(C_T,Γ/2))."""
     gamma_v, radius, omega = 1.0, 1.0, 100.0
     state = wake.WakeState(radius_m=radius, n_blades=4, chord_m=0.07, omega_rad_s=omega, rotation_sign=1, mu_x=0.0,
-                           mu_y=0.0, mu_z=0.0, ct=0.005, gamma_table_m2_s=np.full(8, gamma_v), beta_table_rad=np.zeros(8))
+                           mu_y=0.0, mu_z=0.0, ct=0.005, gamma_table_m2_s=np.full(8, gamma_v),
+                           beta_table_rad=np.zeros(8))
     placement = freewake.RotorPlacement("r", state, np.zeros(3), np.eye(3))
     a = 0.8
     last_turn = np.stack([a * np.cos(np.linspace(0, 2 * np.pi, 36, endpoint=False)),
                           a * np.sin(np.linspace(0, 2 * np.pi, 36, endpoint=False)), np.full(36, -2.0)], axis=1)
     x = np.stack([last_turn, last_turn], axis=1)
     centres, ring_radius, circulation, _ = freewake._continuation_rings(placement, x, state.gamma_table_m2_s, 0.0,
-                                                                       freewake.FreeWakeModel())
+                                                                       freewake.FreeWakeModel(continuation_radii=50.0))
     ct_gamma = 4 * gamma_v / (2.0 * np.pi * omega * radius**2)
     per_rev = 2.0 * np.pi * radius * np.sqrt(ct_gamma / 2.0)
     assert ring_radius == pytest.approx(a)

@@ -9,9 +9,9 @@ These are fits to smoke-flow measurements, so the free wake (which knows none of
 independent check. Rotor inside Landgrebe's test range: B = 4, blade aspect ratio 13.9
 (c = R/13.9, σ = 0.092), θ_tw = −8°, C_T = 0.005 (k1 = −0.0117, k2 = −0.0650 per rad),
 trimmed by nps.bet; z measured from the release point (tip-path plane). Wake: 3 free + 1 far
-revolutions and the semi-infinite continuation (FreeWakeModel default), relaxed to a node
-change < 0.1 % R (the default 1 % stops at 5 iterations, with the pre-passage rise 0.005 R
-short of its converged value).
+revolutions and the semi-infinite continuation (continuation_radii = 50, off by default),
+relaxed to a node change < 0.1 % R (the default 1 % stops at 5 iterations, with the
+pre-passage rise 0.005 R short of its converged value).
 
 Measured (docs/models/wake_bvi.md, "Landgrebe hover"), before → after the far-wake continuation:
 - contraction at ages 2–3 revolutions: 0.726–0.735 R → 0.722–0.737 R against 0.781–0.787
@@ -40,11 +40,12 @@ SIGMA = B * CHORD / (np.pi * R)
 K1 = -0.25 * (CT / SIGMA + 0.001 * TWIST_DEG)
 K2 = -(1.0 + 0.01 * TWIST_DEG) * np.sqrt(CT)
 PASSAGE = 2.0 * np.pi / B
+CONTINUATION_R = 50.0  # semi-infinite far wake, 50 R long (FreeWakeModel.continuation_radii)
 
 
 def _relaxed(placement, **model):
-    model = freewake.FreeWakeModel(**{**dict(revolutions=3.0, far_revolutions=1.0, tolerance_radius_fraction=0.001),
-                                      **model})
+    model = freewake.FreeWakeModel(**{**dict(revolutions=3.0, far_revolutions=1.0, continuation_radii=CONTINUATION_R,
+                                             tolerance_radius_fraction=0.001), **model})
     solution = freewake.relax([placement], wake.WakeModel(), model)
     nodes = freewake.snapshot_nodes(solution, "landgrebe", 0.0)[0] / R
     phi = np.arange(nodes.shape[0]) * model.step_rad

@@ -7,13 +7,13 @@ Synthetic aircraft of identical rotors (tests/validation/multirotor_case.py), 72
   inflow and the F_z change stay below the estimate and the trim tolerance (docs, "Far-apart
   rotors"; coupled, the change would fall as 1/d²: 4.8e-4 of the peak F_z at 25 R, 4.2e-5 at 100 R);
 - (b) side-by-side pair with opposite rotation: mirrored wakes and loads exactly (difference 0);
-- (c) coaxial hover, spacing 0.16 R: κ_int = 1.20, lower rotor's mean inflow 13.7 m/s > upper's
-  11.8 m/s (0.125 R: 1.23; 0.25 R: 1.18; before the far-wake continuation 1.26, 1.30, 1.20);
+- (c) coaxial hover, spacing 0.16 R: κ_int = 1.26, lower rotor's mean inflow 13.5 m/s > upper's
+  11.6 m/s (0.125 R: 1.30; 0.25 R: 1.20);
 - (d) tandem of the thesis' proof of concept (two equal rotors in one plane, rotor 2 behind
-  rotor 1, 6° descent at μ = 0.23): rotor 1's wake gives rotor 2 a mean inflow of 8.9 m/s
-  (thrust −43 % before the re-trim) and 66 % of its ≥ 2/rev BVI increment (RMS 6.8 m/s, peak
-  29.3 m/s against 16.2 m/s from its own wake); rotor 2 gives rotor 1 −0.24 m/s (upwash) and
-  1.6 % of its BVI increment.
+  rotor 1, 6° descent at μ = 0.23): rotor 1's wake gives rotor 2 a mean inflow of 9.0 m/s
+  (thrust −43 % before the re-trim) and 68 % of its ≥ 2/rev BVI increment (RMS 7.4 m/s, peak
+  28.3 m/s against 15.1 m/s from its own wake); rotor 2 gives rotor 1 −0.24 m/s (upwash) and
+  1.5 % of its BVI increment.
 Coaxial and tandem tests are marked slow (≈ 15–25 s each on the shared machine).
 """
 
@@ -49,11 +49,9 @@ def test_far_apart_rotors_give_the_isolated_result(isolated, distance_R):
 
 def test_far_field_estimate_bounds_the_interference_left_out(isolated):
     """The cut-off's premise: at 20 R (still coupled, estimate 1.25e-3 of v_i) the mean inflow
-    the other wake induces is below the far-field estimate v_i R²/(2 d²), and the thrust differs
-    from the isolated one by less than the trim tolerance (measured: 1.25e-3 m/s downwash
-    against the estimate 6.2e-3 m/s; thrust change 1.1e-4; largest F_z change 2.5e-3 of the
-    peak, 6.6e-4 before the far-wake continuation: the other rotor's continued wake, a trailing
-    vortex system 50 R long, moves this rotor's wake by up to 1.6e-3 R)."""
+    the other wake induces is below the far-field estimate v_i R²/(2 d²), and the loads differ
+    from the isolated ones by less than the trim tolerance (measured: 1.12e-3 m/s downwash
+    against the estimate 6.2e-3 m/s; F_z change 6.6e-4 of the peak)."""
     d = 20.0 * mc.RADIUS_M
     pair = _run([("a", 1, (0.0, 0.0, 0.0)), ("b", 1, (0.0, d, 0.0))])
     assert pair.solution.groups == ((0, 1),)
@@ -65,9 +63,7 @@ def test_far_field_estimate_bounds_the_interference_left_out(isolated):
     assert 0.0 < abs(summary.loc[("a", "b"), "mean_dup_mps"]) < ratio * v_i
     fz_pair = pair.results["a"].disk["fz_N_per_m"].to_numpy()
     fz_iso = isolated.results["a"].disk["fz_N_per_m"].to_numpy()
-    assert 0.0 < np.abs(fz_pair - fz_iso).max() < 5e-3 * np.abs(fz_iso).max()
-    thrust = [(r.results["a"].disk["fz_N_per_m"] * r.results["a"].disk["dr_m"]).sum() for r in (pair, isolated)]
-    assert abs(thrust[0] / thrust[1] - 1.0) < interaction.TRIM_TOLERANCE
+    assert 0.0 < np.abs(fz_pair - fz_iso).max() < interaction.TRIM_TOLERANCE * np.abs(fz_iso).max()
 
 
 def test_mirrored_pair_gives_mirrored_loads():
