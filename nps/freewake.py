@@ -469,17 +469,18 @@ def _node_velocities(rotors, beddoes, model, base, distortion) -> list[np.ndarra
     points = base[:, :, :free] + distortion[:, :, :free]
     v = _induced(rotors, sources, range(len(rotors)), points, psi,
                  model.n_age + model.n_far, model.step_rad, model.step_rad, model.vatistas_n, True).sum(axis=1)
+    out = [v[q] + r.free_stream_hp_mps for q, r in enumerate(rotors)]
     rings = [_continuation_rings(r, base[q] + distortion[q], sources.gamma[q], sources.core[q, 0], model)
              for q, r in enumerate(rotors)]
-    out = []
-    for t, r in enumerate(rotors):
-        rot, off, sign = _transforms(rotors, t)
-        flat = points[t].reshape(-1, 3)
-        far = np.zeros_like(flat)
-        for q, ring in enumerate(rings):
-            if ring is not None:
-                far += _ring_velocity(flat, ring[0] @ rot[q].T + off[q], rot[q][:, 2], ring[1], sign[q] * ring[2], ring[3])
-        out.append(v[t] + r.free_stream_hp_mps + far.reshape(points[t].shape))
+    if any(ring is not None for ring in rings):
+        for t in range(len(rotors)):
+            rot, off, sign = _transforms(rotors, t)
+            flat = points[t].reshape(-1, 3)
+            for q, ring in enumerate(rings):
+                if ring is not None:
+                    far = _ring_velocity(flat, ring[0] @ rot[q].T + off[q], rot[q][:, 2], ring[1], sign[q] * ring[2],
+                                         ring[3])
+                    out[t] += far.reshape(points[t].shape)
     return out
 
 
