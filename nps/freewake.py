@@ -486,7 +486,7 @@ def _node_velocities(rotors, beddoes, model, base, distortion) -> list[np.ndarra
 
 # Growth ratio of the ring intervals of the far-wake continuation: the first interval is one
 # blade passage (L/B), each next one 1.25 times longer (the cylinder's field is smooth there;
-# on-axis velocity of the ring sum within 1 % of the exact semi-infinite cylinder, unit test).
+# on-axis velocity of the ring sum within 1 % of the exact semi-infinite cylinder; unit test, bound 1.5 %).
 CONTINUATION_GROWTH = 1.25
 
 
