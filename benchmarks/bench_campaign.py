@@ -4,9 +4,11 @@ Copies config/ into a temporary working directory, runs the repository's Snakefi
 cache: the repository's .numba_cache, unless --cold gives it an empty one), then a second time (the
 no-op rerun), and prints both wall times and the per-rule table of benchmarks/campaign_times.py.
 ``--study-only`` leaves out the products added after the chapter-7 study (mission footprint and
-certification, tone tables), i.e. the campaign whose time issue 16 measured.
+certification, tone tables), i.e. the campaign whose time issue 16 measured. ``--free-wake`` sets
+``wake.model: free`` (free-vortex wakes with rotor–rotor interaction, issue 12). Prints the CPU time of
+the two snakemake runs with their children next to the wall time (the machine is shared).
 
-    python benchmarks/bench_campaign.py [--cold] [--study-only] [--keep DIR]
+    python benchmarks/bench_campaign.py [--cold] [--study-only] [--free-wake] [--keep DIR]
 """
 
 from __future__ import annotations
@@ -28,39 +30,44 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from campaign_times import stage_table  # noqa: E402
 
 
-def snakemake(workdir: Path, cache: Path, *args: str) -> float:
-    """Run the repository's workflow in ``workdir``; wall seconds."""
+def snakemake(workdir: Path, cache: Path, *args: str) -> tuple[float, float]:
+    """Run the repository's workflow in ``workdir``; (wall s, CPU s of snakemake and its jobs)."""
     env = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
-    started = time.perf_counter()
+    cpu0, started = os.times(), time.perf_counter()
     subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(workdir), *args],
                    check=True, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return time.perf_counter() - started
+    cpu1 = os.times()
+    return time.perf_counter() - started, (cpu1.children_user - cpu0.children_user) + (cpu1.children_system - cpu0.children_system)
 
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cold", action="store_true", help="empty numba cache (first run compiles every kernel)")
     ap.add_argument("--study-only", action="store_true", help="without footprint, certification and tone tables")
+    ap.add_argument("--free-wake", action="store_true", help="wake.model: free (rotor-rotor interaction)")
     ap.add_argument("--keep", type=Path, help="run in this directory and keep it")
     args = ap.parse_args(argv)
     workdir = args.keep or Path(tempfile.mkdtemp(prefix="nps-campaign-"))
     shutil.rmtree(workdir / "results", ignore_errors=True)
     shutil.rmtree(workdir / ".snakemake", ignore_errors=True)
     shutil.copytree(REPO / "config", workdir / "config", dirs_exist_ok=True)
+    config_path = workdir / "config" / "config.yaml"
+    config = yaml.safe_load(config_path.read_text())
     if args.study_only:
-        config_path = workdir / "config" / "config.yaml"
-        config = yaml.safe_load(config_path.read_text())
         for section in ("footprint", "certification"):
             config.pop(section, None)
         config.setdefault("outputs", {})["tone_observer_sets"] = []
-        config_path.write_text(yaml.safe_dump(config, sort_keys=False))
+    if args.free_wake:
+        config["wake"]["model"] = "free"
+    config_path.write_text(yaml.safe_dump(config, sort_keys=False))
     cache = Path(tempfile.mkdtemp(prefix="nps-numba-")) if args.cold else REPO / ".numba_cache"
-    full = snakemake(workdir, cache, "-j2", "all")
-    noop = snakemake(workdir, cache, "-j2", "all")
+    (full, cpu), (noop, _) = snakemake(workdir, cache, "-j2", "all"), snakemake(workdir, cache, "-j2", "all")
     table = stage_table(workdir / "results")
     print(table.round(2).to_string())
-    print(f"\n{int(table['jobs'].sum())} jobs; campaign {full / 60:.0f} min {full % 60:.0f} s "
-          f"({'cold' if args.cold else 'warm'} numba cache); no-op rerun {noop:.1f} s")
+    print(f"\n{int(table['jobs'].sum())} jobs ({'free' if args.free_wake else config['wake'].get('model', 'beddoes')} "
+          f"wake); campaign {full // 60:.0f} min {full % 60:.0f} s wall, {cpu / 60:.0f} min {cpu % 60:.0f} s CPU "
+          f"({'cold' if args.cold else 'warm'} numba cache, load average {os.getloadavg()[0]:.1f} at the end); "
+          f"no-op rerun {noop:.1f} s")
     if args.keep is None:
         shutil.rmtree(workdir)
     return 0

@@ -104,6 +104,8 @@ class FreeWakeModel:
     tolerance_radius_fraction: float = 0.01
     max_iterations: int = 60
     vatistas_n: float = 2.0
+    far_field_group_deg: float = 8.0
+    far_field_ratio: float = 4.0
 
     def __post_init__(self):
         checks = {
@@ -119,6 +121,8 @@ class FreeWakeModel:
             "tolerance_radius_fraction": self.tolerance_radius_fraction > 0.0,
             "max_iterations": self.max_iterations >= 1,
             "vatistas_n": self.vatistas_n >= 1.0,
+            "far_field_group_deg": 0.0 <= self.far_field_group_deg <= 90.0,
+            "far_field_ratio": self.far_field_ratio >= 2.0,
         }
         bad = [name for name, ok in checks.items() if not ok]
         if bad:
@@ -357,28 +361,84 @@ def _rotor_nodes(p, gamma_tab, beta_tab, table, table_step, core, psi0, n_age, d
             radius[k, j] = math.sqrt(core[0] * core[0] + core[1] * (1.0 + core[2] * abs(g)) * phi)
 
 
+@kernel(inline=True)
+def _polyline(vx, vy, vz, px, py, pz, nodes, strength, radius, k, j_start, j_end, g_sign, vatistas_n):
+    """(vx, vy, vz) plus the velocity at P of blade k's tip vortex between nodes ``j_start`` and
+    ``j_end``, summed segment by segment (segment j joins nodes j, j+1 and carries their mean Γ
+    and core)."""
+    r1x, r1y, r1z = px - nodes[k, j_start, 0], py - nodes[k, j_start, 1], pz - nodes[k, j_start, 2]
+    n1 = math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z)
+    for j in range(j_start, j_end):
+        r2x, r2y, r2z = px - nodes[k, j + 1, 0], py - nodes[k, j + 1, 1], pz - nodes[k, j + 1, 2]
+        n2 = math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z)
+        dx, dy, dz = wake._segment(
+            r1x, r1y, r1z, n1, r2x, r2y, r2z, n2,
+            g_sign * 0.5 * (strength[k, j] + strength[k, j + 1]),
+            0.5 * (radius[k, j] + radius[k, j + 1]),
+            vatistas_n,
+        )
+        r1x, r1y, r1z, n1 = r2x, r2y, r2z, n2
+        vx += dx
+        vy += dy
+        vz += dz
+    return vx, vy, vz
+
+
+@kernel
+def _far_groups(nodes, strength, radius, n_blades, n_age, group, ratio, groups):
+    """Per blade k and group g of ``group`` consecutive segments (nodes gG … min((g+1)G, n_age)):
+    centre (mid-chord), squared far distance (ratio · half the largest node distance from the
+    centre, squared), the segment-mean Γ and core of the chord segment; into ``groups``
+    (B, n_groups, 6)."""
+    n_groups = (n_age + group - 1) // group
+    for k in range(n_blades):
+        for g in range(n_groups):
+            j0 = g * group
+            j1 = min(j0 + group, n_age)
+            cx = 0.5 * (nodes[k, j0, 0] + nodes[k, j1, 0])
+            cy = 0.5 * (nodes[k, j0, 1] + nodes[k, j1, 1])
+            cz = 0.5 * (nodes[k, j0, 2] + nodes[k, j1, 2])
+            extent = 0.0
+            s = 0.0
+            rc = 0.0
+            for j in range(j0, j1 + 1):
+                dx, dy, dz = nodes[k, j, 0] - cx, nodes[k, j, 1] - cy, nodes[k, j, 2] - cz
+                extent = max(extent, dx * dx + dy * dy + dz * dz)
+            for j in range(j0, j1):
+                s += 0.5 * (strength[k, j] + strength[k, j + 1])
+                rc += 0.5 * (radius[k, j] + radius[k, j + 1])
+            groups[k, g, 0], groups[k, g, 1], groups[k, g, 2] = cx, cy, cz
+            groups[k, g, 3] = ratio * ratio * extent
+            groups[k, g, 4] = s / (j1 - j0)
+            groups[k, g, 5] = rc / (j1 - j0)
+
+
 @kernel(parallel=True)
 def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortion, table_step, core, rot, off, sign,
-                    bound, n_age, dphi, vatistas_n):
+                    bound, far, group, ratio, n_age, dphi, vatistas_n):
     """Velocity (n_tgt, n_src, n_rows, n_pts, 3) induced at ``points`` (n_tgt, n_rows, n_pts, 3)
     by every source rotor's tip vortices, in each target rotor's H'. Row i of target t is the
     instant when the target's blade 0 is at ``row_psi[i]``; source q's blade 0 is then at
     omega_ratio[t, q]·row_psi[i]. rot (n_tgt, n_src, 3, 3), off (n_tgt, n_src, 3), sign
     (n_tgt, n_src) map source H' to target H' (:func:`_transforms`); ``bound[t, q]``: add the
     blades' bound vortices, straight from the hub centre to the tip node (strength Γ_v, core
-    r_c0), closing each tip vortex into a horseshoe."""
+    r_c0), closing each tip vortex into a horseshoe. ``far[t, q]``: far-field grouping of
+    source q's vortices (:func:`_far_groups`): a group of ``group`` segments farther than
+    ``ratio`` times its half-extent from the point counts as its chord segment."""
     n_src = params.shape[0]
     n_tgt, n_rows, n_pts = points.shape[0], points.shape[1], points.shape[2]
     out = np.zeros((n_tgt, n_src, n_rows, n_pts, 3))
     max_b = 0
     for q in range(n_src):
         max_b = max(max_b, int(params[q, 1]))
+    n_groups = (n_age + group - 1) // group
     for ti in prange(n_tgt * n_rows):
         t = ti // n_rows
         i = ti % n_rows
         nodes = np.empty((max_b, n_age + 1, 3))
         strength = np.empty((max_b, n_age + 1))
         radius = np.empty((max_b, n_age + 1))
+        groups = np.empty((max_b, n_groups, 6))
         for q in range(n_src):
             n_blades = int(params[q, 1])
             _rotor_nodes(params[q], gamma[q], beta[q], distortion[q], table_step, core[q],
@@ -389,26 +449,36 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
                     nodes[k, j, 0] = rot[t, q, 0, 0] * x + rot[t, q, 0, 1] * y + rot[t, q, 0, 2] * z + off[t, q, 0]
                     nodes[k, j, 1] = rot[t, q, 1, 0] * x + rot[t, q, 1, 1] * y + rot[t, q, 1, 2] * z + off[t, q, 1]
                     nodes[k, j, 2] = rot[t, q, 2, 0] * x + rot[t, q, 2, 1] * y + rot[t, q, 2, 2] * z + off[t, q, 2]
+            grouped = far[t, q] and group > 1
+            if grouped:
+                _far_groups(nodes, strength, radius, n_blades, n_age, group, ratio, groups)
             g_sign = sign[t, q]
             for m in range(n_pts):
                 px, py, pz = points[t, i, m, 0], points[t, i, m, 1], points[t, i, m, 2]
                 vx = vy = vz = 0.0
                 for k in range(n_blades):
-                    r1x, r1y, r1z = px - nodes[k, 0, 0], py - nodes[k, 0, 1], pz - nodes[k, 0, 2]
-                    n1 = math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z)
-                    for j in range(n_age):
-                        r2x, r2y, r2z = px - nodes[k, j + 1, 0], py - nodes[k, j + 1, 1], pz - nodes[k, j + 1, 2]
-                        n2 = math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z)
-                        dx, dy, dz = wake._segment(
-                            r1x, r1y, r1z, n1, r2x, r2y, r2z, n2,
-                            g_sign * 0.5 * (strength[k, j] + strength[k, j + 1]),
-                            0.5 * (radius[k, j] + radius[k, j + 1]),
-                            vatistas_n,
-                        )
-                        r1x, r1y, r1z, n1 = r2x, r2y, r2z, n2
-                        vx += dx
-                        vy += dy
-                        vz += dz
+                    if grouped:
+                        for g in range(n_groups):
+                            j0 = g * group
+                            j1 = min(j0 + group, n_age)
+                            dx, dy, dz = px - groups[k, g, 0], py - groups[k, g, 1], pz - groups[k, g, 2]
+                            if dx * dx + dy * dy + dz * dz > groups[k, g, 3]:
+                                r1x, r1y, r1z = px - nodes[k, j0, 0], py - nodes[k, j0, 1], pz - nodes[k, j0, 2]
+                                r2x, r2y, r2z = px - nodes[k, j1, 0], py - nodes[k, j1, 1], pz - nodes[k, j1, 2]
+                                dx, dy, dz = wake._segment(
+                                    r1x, r1y, r1z, math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z),
+                                    r2x, r2y, r2z, math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z),
+                                    g_sign * groups[k, g, 4], groups[k, g, 5], vatistas_n,
+                                )
+                                vx += dx
+                                vy += dy
+                                vz += dz
+                            else:
+                                vx, vy, vz = _polyline(vx, vy, vz, px, py, pz, nodes, strength, radius, k, j0, j1, g_sign,
+                                                       vatistas_n)
+                    else:
+                        vx, vy, vz = _polyline(vx, vy, vz, px, py, pz, nodes, strength, radius, k, 0, n_age, g_sign,
+                                               vatistas_n)
                     if bound[t, q]:
                         h1x, h1y, h1z = px - off[t, q, 0], py - off[t, q, 1], pz - off[t, q, 2]
                         t1x, t1y, t1z = px - nodes[k, 0, 0], py - nodes[k, 0, 1], pz - nodes[k, 0, 2]
@@ -425,10 +495,11 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
 
 
 def _induced(rotors, sources: _Sources, targets, points, row_psi, n_age: int, dphi: float, table_step: float,
-             vatistas_n: float, own_bound: bool) -> np.ndarray:
+             vatistas_n: float, own_bound: bool, far_group: int = 1, far_ratio: float = 0.0) -> np.ndarray:
     """Per-source induced velocity (n_tgt, n_src, n_rows, n_pts, 3) in each target's H' (m/s)
     at ``points`` (n_tgt, n_rows, n_pts, 3); ``targets``: rotor indices; bound vortices of the
-    other rotors always, of the target itself when ``own_bound``."""
+    other rotors always, of the target itself when ``own_bound``; the other rotors' vortices
+    with the far-field grouping of ``far_group`` segments at ``far_ratio`` (1: none)."""
     maps = [_transforms(rotors, t) for t in targets]
     rot = np.ascontiguousarray([m[0] for m in maps])
     off = np.ascontiguousarray([m[1] for m in maps])
@@ -436,10 +507,11 @@ def _induced(rotors, sources: _Sources, targets, points, row_psi, n_age: int, dp
     omega = np.array([r.state.omega_rad_s for r in rotors])
     ratio = np.ascontiguousarray([omega / omega[t] for t in targets])
     bound = np.ascontiguousarray([[own_bound or q != t for q in range(len(rotors))] for t in targets], dtype=np.bool_)
+    far = np.ascontiguousarray([[q != t for q in range(len(rotors))] for t in targets], dtype=np.bool_)
     return _induced_kernel(np.ascontiguousarray(points, dtype=float), np.ascontiguousarray(row_psi, dtype=float), ratio,
                            sources.params, sources.gamma, sources.beta, sources.distortion, float(table_step),
-                           np.ascontiguousarray(sources.core), rot, off, sign, bound, int(n_age), float(dphi),
-                           float(vatistas_n))
+                           np.ascontiguousarray(sources.core), rot, off, sign, bound, far, max(int(far_group), 1),
+                           float(far_ratio), int(n_age), float(dphi), float(vatistas_n))
 
 
 def _node_table(rotor: RotorPlacement, beddoes: wake.WakeModel, model: FreeWakeModel) -> np.ndarray:
@@ -686,9 +758,12 @@ def disk_induced_velocity(solution: FreeWakeSolution, target: str, psi_rad, r_m,
     points = wake.blade_points(psi, r_m, beta_rad)
     rotors = [solution.rotors[i] for i in group]
     sources = _lifting_line_sources(rotors, solution.beddoes, solution.distortion_m[group])
+    model = solution.model
+    n_group = int(round(math.radians(model.far_field_group_deg) / solution.beddoes.dphi_rad))
     out = np.zeros((len(solution.rotors),) + points.shape)
     out[group] = _induced(rotors, sources, [group.index(t)], points[None], psi, solution.beddoes.n_age,
-                          solution.beddoes.dphi_rad, solution.model.step_rad, solution.beddoes.vatistas_n, False)[0]
+                          solution.beddoes.dphi_rad, model.step_rad, solution.beddoes.vatistas_n, False, n_group,
+                          model.far_field_ratio)[0]
     return out
 
 
