@@ -88,7 +88,10 @@ class FreeWakeModel:
     resolution of the straight-segment wake on the relaxation grid; docs); ``core_growth``
     with ``growth_a1`` and ``viscosity_m2_s``; ``relaxation`` ω in (0, 1]; ``tolerance_radius_fraction``:
     convergence when the largest node change between two iterations is below this × R;
-    ``max_iterations``; ``vatistas_n``.
+    ``max_iterations``; ``vatistas_n``; ``far_field_group_deg`` and ``far_field_ratio``: in the
+    blade-load evaluation another rotor's vortex is summed in groups of this many degrees of
+    wake age, a group farther than ``far_field_ratio`` × its half-extent from the blade station
+    counting as its chord segment (0: every segment; docs "Far-field grouping").
     """
 
     steps_per_rev: int = 36
