@@ -8,7 +8,9 @@ certification, tone tables), i.e. the campaign whose time issue 16 measured. ``-
 ``wake.model: free`` (free-vortex wakes with rotor–rotor interaction, issue 12). Prints the CPU time of
 the two snakemake runs with their children next to the wall time (the machine is shared).
 
-    python benchmarks/bench_campaign.py [--cold] [--study-only] [--free-wake] [--keep DIR]
+``--wake-threads N`` runs the wake jobs with N threads (the local profile gives them one).
+
+    python benchmarks/bench_campaign.py [--cold] [--study-only] [--free-wake] [--wake-threads N] [--keep DIR]
 """
 
 from __future__ import annotations
@@ -40,11 +42,17 @@ def snakemake(workdir: Path, cache: Path, *args: str) -> tuple[float, float]:
     return time.perf_counter() - started, (cpu1.children_user - cpu0.children_user) + (cpu1.children_system - cpu0.children_system)
 
 
+def _min_s(seconds: float) -> str:
+    minutes, rest = divmod(int(round(seconds)), 60)
+    return f"{minutes} min {rest} s"
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cold", action="store_true", help="empty numba cache (first run compiles every kernel)")
     ap.add_argument("--study-only", action="store_true", help="without footprint, certification and tone tables")
     ap.add_argument("--free-wake", action="store_true", help="wake.model: free (rotor-rotor interaction)")
+    ap.add_argument("--wake-threads", type=int, help="threads of each wake job (default: the profile's)")
     ap.add_argument("--keep", type=Path, help="run in this directory and keep it")
     args = ap.parse_args(argv)
     workdir = args.keep or Path(tempfile.mkdtemp(prefix="nps-campaign-"))
@@ -61,11 +69,12 @@ def main(argv: list[str] | None = None) -> int:
         config["wake"]["model"] = "free"
     config_path.write_text(yaml.safe_dump(config, sort_keys=False))
     cache = Path(tempfile.mkdtemp(prefix="nps-numba-")) if args.cold else REPO / ".numba_cache"
-    (full, cpu), (noop, _) = snakemake(workdir, cache, "-j2", "all"), snakemake(workdir, cache, "-j2", "all")
+    extra = ["--set-threads", f"wake={args.wake_threads}"] if args.wake_threads else []
+    (full, cpu), (noop, _) = snakemake(workdir, cache, "-j2", *extra, "all"), snakemake(workdir, cache, "-j2", *extra, "all")
     table = stage_table(workdir / "results")
     print(table.round(2).to_string())
     print(f"\n{int(table['jobs'].sum())} jobs ({'free' if args.free_wake else config['wake'].get('model', 'beddoes')} "
-          f"wake); campaign {full // 60:.0f} min {full % 60:.0f} s wall, {cpu / 60:.0f} min {cpu % 60:.0f} s CPU "
+          f"wake); campaign {_min_s(full)} wall, {_min_s(cpu)} CPU "
           f"({'cold' if args.cold else 'warm'} numba cache, load average {os.getloadavg()[0]:.1f} at the end); "
           f"no-op rerun {noop:.1f} s")
     if args.keep is None:
