@@ -387,6 +387,16 @@ def _polyline(vx, vy, vz, px, py, pz, nodes, strength, radius, k, j_start, j_end
     return vx, vy, vz
 
 
+@kernel(inline=True)
+def _bound(px, py, pz, hub, nodes, k, gamma, rc, vatistas_n):
+    """Velocity at P of blade k's bound vortex, straight from the hub centre ``hub`` (3,) to its
+    tip node (strength ``gamma``, core ``rc``)."""
+    h1x, h1y, h1z = px - hub[0], py - hub[1], pz - hub[2]
+    t1x, t1y, t1z = px - nodes[k, 0, 0], py - nodes[k, 0, 1], pz - nodes[k, 0, 2]
+    return wake._segment(h1x, h1y, h1z, math.sqrt(h1x * h1x + h1y * h1y + h1z * h1z),
+                         t1x, t1y, t1z, math.sqrt(t1x * t1x + t1y * t1y + t1z * t1z), gamma, rc, vatistas_n)
+
+
 @kernel
 def _far_groups(nodes, strength, radius, n_blades, n_age, group, ratio, groups):
     """Per blade k and group g of ``group`` consecutive segments (nodes gG … min((g+1)G, n_age)):
@@ -442,6 +452,9 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
         strength = np.empty((max_b, n_age + 1))
         radius = np.empty((max_b, n_age + 1))
         groups = np.empty((max_b, n_groups, 6))
+        px, py, pz = points[t, i, :, 0].copy(), points[t, i, :, 1].copy(), points[t, i, :, 2].copy()
+        scratch = np.empty((4, n_pts))
+        vx, vy, vz = np.empty(n_pts), np.empty(n_pts), np.empty(n_pts)
         for q in range(n_src):
             n_blades = int(params[q, 1])
             _rotor_nodes(params[q], gamma[q], beta[q], distortion[q], table_step, core[q],
@@ -452,48 +465,52 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
                     nodes[k, j, 0] = rot[t, q, 0, 0] * x + rot[t, q, 0, 1] * y + rot[t, q, 0, 2] * z + off[t, q, 0]
                     nodes[k, j, 1] = rot[t, q, 1, 0] * x + rot[t, q, 1, 1] * y + rot[t, q, 1, 2] * z + off[t, q, 1]
                     nodes[k, j, 2] = rot[t, q, 2, 0] * x + rot[t, q, 2, 1] * y + rot[t, q, 2, 2] * z + off[t, q, 2]
-            grouped = far[t, q] and group > 1
-            if grouped:
-                _far_groups(nodes, strength, radius, n_blades, n_age, group, ratio, groups)
             g_sign = sign[t, q]
-            for m in range(n_pts):
-                px, py, pz = points[t, i, m, 0], points[t, i, m, 1], points[t, i, m, 2]
-                vx = vy = vz = 0.0
-                for k in range(n_blades):
-                    if grouped:
+            vx[:] = 0.0
+            vy[:] = 0.0
+            vz[:] = 0.0
+            if far[t, q] and group > 1:
+                _far_groups(nodes, strength, radius, n_blades, n_age, group, ratio, groups)
+                for m in range(n_pts):
+                    sx = sy = sz = 0.0
+                    for k in range(n_blades):
                         for g in range(n_groups):
                             j0 = g * group
                             j1 = min(j0 + group, n_age)
-                            dx, dy, dz = px - groups[k, g, 0], py - groups[k, g, 1], pz - groups[k, g, 2]
+                            dx, dy, dz = px[m] - groups[k, g, 0], py[m] - groups[k, g, 1], pz[m] - groups[k, g, 2]
                             if dx * dx + dy * dy + dz * dz > groups[k, g, 3]:
-                                r1x, r1y, r1z = px - nodes[k, j0, 0], py - nodes[k, j0, 1], pz - nodes[k, j0, 2]
-                                r2x, r2y, r2z = px - nodes[k, j1, 0], py - nodes[k, j1, 1], pz - nodes[k, j1, 2]
+                                r1x, r1y, r1z = px[m] - nodes[k, j0, 0], py[m] - nodes[k, j0, 1], pz[m] - nodes[k, j0, 2]
+                                r2x, r2y, r2z = px[m] - nodes[k, j1, 0], py[m] - nodes[k, j1, 1], pz[m] - nodes[k, j1, 2]
                                 dx, dy, dz = wake._segment(
                                     r1x, r1y, r1z, math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z),
                                     r2x, r2y, r2z, math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z),
                                     g_sign * groups[k, g, 4], groups[k, g, 5], vatistas_n,
                                 )
-                                vx += dx
-                                vy += dy
-                                vz += dz
+                                sx += dx
+                                sy += dy
+                                sz += dz
                             else:
-                                vx, vy, vz = _polyline(vx, vy, vz, px, py, pz, nodes, strength, radius, k, j0, j1, g_sign,
-                                                       vatistas_n)
-                    else:
-                        vx, vy, vz = _polyline(vx, vy, vz, px, py, pz, nodes, strength, radius, k, 0, n_age, g_sign,
-                                               vatistas_n)
+                                sx, sy, sz = _polyline(sx, sy, sz, px[m], py[m], pz[m], nodes, strength, radius, k, j0, j1,
+                                                       g_sign, vatistas_n)
+                        if bound[t, q]:
+                            dx, dy, dz = _bound(px[m], py[m], pz[m], off[t, q], nodes, k, g_sign * strength[k, 0], core[q, 0],
+                                                vatistas_n)
+                            sx += dx
+                            sy += dy
+                            sz += dz
+                    vx[m], vy[m], vz[m] = sx, sy, sz
+            else:
+                for k in range(n_blades):
+                    wake._polyline_points(px, py, pz, nodes, strength, radius, k, 0, n_age, g_sign, vatistas_n,
+                                          scratch[0], scratch[1], scratch[2], scratch[3], vx, vy, vz)
                     if bound[t, q]:
-                        h1x, h1y, h1z = px - off[t, q, 0], py - off[t, q, 1], pz - off[t, q, 2]
-                        t1x, t1y, t1z = px - nodes[k, 0, 0], py - nodes[k, 0, 1], pz - nodes[k, 0, 2]
-                        dx, dy, dz = wake._segment(
-                            h1x, h1y, h1z, math.sqrt(h1x * h1x + h1y * h1y + h1z * h1z),
-                            t1x, t1y, t1z, math.sqrt(t1x * t1x + t1y * t1y + t1z * t1z),
-                            g_sign * strength[k, 0], core[q, 0], vatistas_n,
-                        )
-                        vx += dx
-                        vy += dy
-                        vz += dz
-                out[t, q, i, m, 0], out[t, q, i, m, 1], out[t, q, i, m, 2] = vx, vy, vz
+                        for m in range(n_pts):
+                            dx, dy, dz = _bound(px[m], py[m], pz[m], off[t, q], nodes, k, g_sign * strength[k, 0],
+                                                core[q, 0], vatistas_n)
+                            vx[m] += dx
+                            vy[m] += dy
+                            vz[m] += dz
+            out[t, q, i, :, 0], out[t, q, i, :, 1], out[t, q, i, :, 2] = vx, vy, vz
     return out
 
 

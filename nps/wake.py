@@ -261,27 +261,60 @@ def _segment(r1x, r1y, r1z, n1, r2x, r2y, r2z, n2, gamma, rc, n):
         V = Γ/(4π) (r1×r2) r0·(r1/|r1| − r2/|r2|) / (|r0|² (r_c^{2n} + r_p^{2n})^{1/n})
 
     which is eq. 5.15 (with ê r_p = r1×r2/|r0|). Finite everywhere; zero on the line itself.
+    Branch-free (a degenerate segment, P on an end node or a zero denominator select k = 0), so
+    that loops over points vectorise (:func:`_polyline_points`).
     """
     r0x, r0y, r0z = r1x - r2x, r1y - r2y, r1z - r2z
     cx = r1y * r2z - r1z * r2y
     cy = r1z * r2x - r1x * r2z
     cz = r1x * r2y - r1y * r2x
     r0sq = r0x * r0x + r0y * r0y + r0z * r0z
-    if r0sq == 0.0 or n1 == 0.0 or n2 == 0.0:
-        return 0.0, 0.0, 0.0
     dot = (r0x * r1x + r0y * r1y + r0z * r1z) / n1 - (r0x * r2x + r0y * r2y + r0z * r2z) / n2
     rp2 = (cx * cx + cy * cy + cz * cz) / r0sq
     if n == 2.0:
         den = math.sqrt(rc * rc * rc * rc + rp2 * rp2)
     else:
         den = (rc ** (2.0 * n) + rp2**n) ** (1.0 / n)
-    if den == 0.0:
-        return 0.0, 0.0, 0.0
     k = gamma / (4.0 * math.pi) * dot / (r0sq * den)
+    k = k if (r0sq != 0.0) & (n1 != 0.0) & (n2 != 0.0) & (den != 0.0) else 0.0
     return k * cx, k * cy, k * cz
 
 
-@nb.njit(cache=True, parallel=True)
+@nb.njit(cache=True, inline="always")
+def _polyline_points(px, py, pz, nodes, strength, core, k, j_start, j_end, g_sign, n, r1x, r1y, r1z, n1, vx, vy, vz):
+    """Add to (vx, vy, vz) (n_pts,) the velocity at the points (px, py, pz) (n_pts,) of blade k's
+    tip vortex between nodes ``j_start`` and ``j_end`` of ``nodes`` (B, J+1, 3): segment j joins
+    nodes j and j+1 and carries g_sign · their mean strength and their mean core. Segment-outer,
+    point-inner (vectorises); each point sums segment by segment in order. r1x … n1 (n_pts,):
+    scratch."""
+    if n == 2.0:  # the literal lets the compiler drop the general-n power law from the loop
+        _sweep(px, py, pz, nodes, strength, core, k, j_start, j_end, g_sign, 2.0, r1x, r1y, r1z, n1, vx, vy, vz)
+    else:
+        _sweep(px, py, pz, nodes, strength, core, k, j_start, j_end, g_sign, n, r1x, r1y, r1z, n1, vx, vy, vz)
+
+
+@nb.njit(cache=True, inline="always")
+def _sweep(px, py, pz, nodes, strength, core, k, j_start, j_end, g_sign, n, r1x, r1y, r1z, n1, vx, vy, vz):
+    """The loops of :func:`_polyline_points`."""
+    n_pts = px.shape[0]
+    for m in range(n_pts):
+        r1x[m], r1y[m], r1z[m] = px[m] - nodes[k, j_start, 0], py[m] - nodes[k, j_start, 1], pz[m] - nodes[k, j_start, 2]
+        n1[m] = math.sqrt(r1x[m] * r1x[m] + r1y[m] * r1y[m] + r1z[m] * r1z[m])
+    for j in range(j_start, j_end):
+        ax, ay, az = nodes[k, j + 1, 0], nodes[k, j + 1, 1], nodes[k, j + 1, 2]
+        gamma = g_sign * 0.5 * (strength[k, j] + strength[k, j + 1])
+        rc = 0.5 * (core[k, j] + core[k, j + 1])
+        for m in range(n_pts):
+            r2x, r2y, r2z = px[m] - ax, py[m] - ay, pz[m] - az
+            n2 = math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z)
+            dx, dy, dz = _segment(r1x[m], r1y[m], r1z[m], n1[m], r2x, r2y, r2z, n2, gamma, rc, n)
+            r1x[m], r1y[m], r1z[m], n1[m] = r2x, r2y, r2z, n2
+            vx[m] += dx
+            vy[m] += dy
+            vz[m] += dz
+
+
+@nb.njit(cache=True, parallel=True, error_model="numpy")
 def _segments_kernel(points, starts, ends, gamma, rc, n):
     out = np.zeros_like(points)
     for i in nb.prange(points.shape[0]):
@@ -337,7 +370,7 @@ def _blade_wake(p, gamma_tab, beta_tab, psi_blade, n_age, nodes, strength, core)
             core[k, j] = _core_radius(p, g, phi)
 
 
-@nb.njit(cache=True, parallel=True)
+@nb.njit(cache=True, parallel=True, error_model="numpy")
 def _disk_kernel(p, gamma_tab, beta_tab, psi_eval, points, n_age):
     """Induced velocity (H', m/s) at points (n_psi, n_r, 3) when blade 0 is at psi_eval[i].
 
@@ -353,26 +386,13 @@ def _disk_kernel(p, gamma_tab, beta_tab, psi_eval, points, n_age):
         strength = np.empty((n_blades, n_age + 1))
         core = np.empty((n_blades, n_age + 1))
         _blade_wake(p, gamma_tab, beta_tab, psi_eval[i], n_age, nodes, strength, core)
-        for m in range(n_r):
-            px, py, pz = points[i, m, 0], points[i, m, 1], points[i, m, 2]
-            vx = vy = vz = 0.0
-            for k in range(n_blades):
-                r1x, r1y, r1z = px - nodes[k, 0, 0], py - nodes[k, 0, 1], pz - nodes[k, 0, 2]
-                n1 = math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z)
-                for j in range(n_age):
-                    r2x, r2y, r2z = px - nodes[k, j + 1, 0], py - nodes[k, j + 1, 1], pz - nodes[k, j + 1, 2]
-                    n2 = math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z)
-                    dx, dy, dz = _segment(
-                        r1x, r1y, r1z, n1, r2x, r2y, r2z, n2,
-                        0.5 * (strength[k, j] + strength[k, j + 1]),
-                        0.5 * (core[k, j] + core[k, j + 1]),
-                        n,
-                    )
-                    r1x, r1y, r1z, n1 = r2x, r2y, r2z, n2
-                    vx += dx
-                    vy += dy
-                    vz += dz
-            out[i, m, 0], out[i, m, 1], out[i, m, 2] = vx, vy, vz
+        px, py, pz = points[i, :, 0].copy(), points[i, :, 1].copy(), points[i, :, 2].copy()
+        scratch = np.empty((4, n_r))
+        vx, vy, vz = np.zeros(n_r), np.zeros(n_r), np.zeros(n_r)
+        for k in range(n_blades):
+            _polyline_points(px, py, pz, nodes, strength, core, k, 0, n_age, 1.0, n,
+                             scratch[0], scratch[1], scratch[2], scratch[3], vx, vy, vz)
+        out[i, :, 0], out[i, :, 1], out[i, :, 2] = vx, vy, vz
     return out
 
 
