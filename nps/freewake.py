@@ -455,6 +455,7 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
         px, py, pz = points[t, i, :, 0].copy(), points[t, i, :, 1].copy(), points[t, i, :, 2].copy()
         scratch = np.empty((4, n_pts))
         vx, vy, vz = np.empty(n_pts), np.empty(n_pts), np.empty(n_pts)
+        near = np.empty(n_pts, dtype=np.int64)
         for q in range(n_src):
             n_blades = int(params[q, 1])
             _rotor_nodes(params[q], gamma[q], beta[q], distortion[q], table_step, core[q],
@@ -471,34 +472,37 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
             vz[:] = 0.0
             if far[t, q] and group > 1:
                 _far_groups(nodes, strength, radius, n_blades, n_age, group, ratio, groups)
-                for m in range(n_pts):
-                    sx = sy = sz = 0.0
-                    for k in range(n_blades):
-                        for g in range(n_groups):
-                            j0 = g * group
-                            j1 = min(j0 + group, n_age)
+                for k in range(n_blades):
+                    for g in range(n_groups):
+                        j0 = g * group
+                        j1 = min(j0 + group, n_age)
+                        n_near = 0
+                        for m in range(n_pts):  # the chord of every far group, all points at once
                             dx, dy, dz = px[m] - groups[k, g, 0], py[m] - groups[k, g, 1], pz[m] - groups[k, g, 2]
-                            if dx * dx + dy * dy + dz * dz > groups[k, g, 3]:
-                                r1x, r1y, r1z = px[m] - nodes[k, j0, 0], py[m] - nodes[k, j0, 1], pz[m] - nodes[k, j0, 2]
-                                r2x, r2y, r2z = px[m] - nodes[k, j1, 0], py[m] - nodes[k, j1, 1], pz[m] - nodes[k, j1, 2]
-                                dx, dy, dz = wake._segment(
-                                    r1x, r1y, r1z, math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z),
-                                    r2x, r2y, r2z, math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z),
-                                    g_sign * groups[k, g, 4], groups[k, g, 5], vatistas_n,
-                                )
-                                sx += dx
-                                sy += dy
-                                sz += dz
-                            else:
-                                sx, sy, sz = _polyline(sx, sy, sz, px[m], py[m], pz[m], nodes, strength, radius, k, j0, j1,
-                                                       g_sign, vatistas_n)
-                        if bound[t, q]:
-                            dx, dy, dz = _bound(px[m], py[m], pz[m], off[t, q], nodes, k, g_sign * strength[k, 0], core[q, 0],
-                                                vatistas_n)
-                            sx += dx
-                            sy += dy
-                            sz += dz
-                    vx[m], vy[m], vz[m] = sx, sy, sz
+                            is_far = dx * dx + dy * dy + dz * dz > groups[k, g, 3]
+                            r1x, r1y, r1z = px[m] - nodes[k, j0, 0], py[m] - nodes[k, j0, 1], pz[m] - nodes[k, j0, 2]
+                            r2x, r2y, r2z = px[m] - nodes[k, j1, 0], py[m] - nodes[k, j1, 1], pz[m] - nodes[k, j1, 2]
+                            dx, dy, dz = wake._segment(
+                                r1x, r1y, r1z, math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z),
+                                r2x, r2y, r2z, math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z),
+                                g_sign * groups[k, g, 4], groups[k, g, 5], vatistas_n,
+                            )
+                            vx[m] += dx if is_far else 0.0
+                            vy[m] += dy if is_far else 0.0
+                            vz[m] += dz if is_far else 0.0
+                            near[n_near] = m
+                            n_near += 0 if is_far else 1
+                        for e in range(n_near):  # segment by segment where the group is near
+                            m = near[e]
+                            vx[m], vy[m], vz[m] = _polyline(vx[m], vy[m], vz[m], px[m], py[m], pz[m], nodes, strength,
+                                                            radius, k, j0, j1, g_sign, vatistas_n)
+                    if bound[t, q]:
+                        for m in range(n_pts):
+                            dx, dy, dz = _bound(px[m], py[m], pz[m], off[t, q], nodes, k, g_sign * strength[k, 0],
+                                                core[q, 0], vatistas_n)
+                            vx[m] += dx
+                            vy[m] += dy
+                            vz[m] += dz
             else:
                 for k in range(n_blades):
                     wake._polyline_points(px, py, pz, nodes, strength, radius, k, 0, n_age, g_sign, vatistas_n,
