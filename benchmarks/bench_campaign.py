@@ -70,7 +70,7 @@ def main(argv: list[str] | None = None) -> int:
     config_path.write_text(yaml.safe_dump(config, sort_keys=False))
     cache = Path(tempfile.mkdtemp(prefix="nps-numba-")) if args.cold else REPO / ".numba_cache"
     extra = ["--set-threads", f"wake={args.wake_threads}"] if args.wake_threads else []
-    (full, cpu), (noop, _) = snakemake(workdir, cache, "-j2", *extra, "all"), snakemake(workdir, cache, "-j2", *extra, "all")
+    (full, cpu), (noop, _) = snakemake(workdir, cache, "-j2", "all", *extra), snakemake(workdir, cache, "-j2", "all", *extra)
     table = stage_table(workdir / "results")
     print(table.round(2).to_string())
     print(f"\n{int(table['jobs'].sum())} jobs ({'free' if args.free_wake else config['wake'].get('model', 'beddoes')} "
