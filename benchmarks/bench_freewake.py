@@ -10,7 +10,7 @@ Prints the first call (including numba's cache load or compilation), then the be
 the other users' load, the CPU time over the 2 threads bounds the idle-machine wall time), the
 relaxation iterations and the interaction summary.
 ``--exact`` also runs without the far-field grouping of the other rotors' wakes
-(``FreeWakeModel(far_field_group_deg=0)``, every 1° segment) and prints, per rotor, the change of
+(``FreeWakeModel(far_group_deg=0)``, every 1° segment) and prints, per rotor, the change of
 peak and RMS BVI ΔU_P, of the rotor thrust and of the largest section-load change that the grouping
 makes (docs/models/wake_bvi.md, "Performance").
 Run from the repository root: ``PYTHONPATH=. python benchmarks/bench_freewake.py [--exact] [aircraft ...]``.
@@ -71,8 +71,8 @@ def main(argv=None) -> None:
               f"iterations, last node change {done.solution.residual_history[-1]:.4f} R")
         print(done.summary.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
         if args.exact:
-            wall_exact, cpu_exact = _timed(inputs, freewake.FreeWakeModel(far_field_group_deg=0.0))
-            exact = interaction.aircraft_bvi_loads(*inputs, freewake.FreeWakeModel(far_field_group_deg=0.0))
+            wall_exact, cpu_exact = _timed(inputs, freewake.FreeWakeModel(far_group_deg=0.0))
+            exact = interaction.aircraft_bvi_loads(*inputs, freewake.FreeWakeModel(far_group_deg=0.0))
             print(f"  ungrouped: {wall_exact:.2f} s wall ({cpu_exact:.2f} s CPU)")
             print(_accuracy(done, exact).to_string(index=False, float_format=lambda v: f"{v:.3g}"))
 

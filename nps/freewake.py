@@ -88,9 +88,9 @@ class FreeWakeModel:
     resolution of the straight-segment wake on the relaxation grid; docs); ``core_growth``
     with ``growth_a1`` and ``viscosity_m2_s``; ``relaxation`` ω in (0, 1]; ``tolerance_radius_fraction``:
     convergence when the largest node change between two iterations is below this × R;
-    ``max_iterations``; ``vatistas_n``; ``far_field_group_deg`` and ``far_field_ratio``: in the
+    ``max_iterations``; ``vatistas_n``; ``far_group_deg`` and ``far_group_distance``: in the
     blade-load evaluation another rotor's vortex is summed in groups of this many degrees of
-    wake age, a group farther than ``far_field_ratio`` × its half-extent from the blade station
+    wake age, a group farther than ``far_group_distance`` × its half-extent from the blade station
     counting as its chord segment (0: every segment; docs "Far-field grouping").
     """
 
@@ -107,8 +107,8 @@ class FreeWakeModel:
     tolerance_radius_fraction: float = 0.01
     max_iterations: int = 60
     vatistas_n: float = 2.0
-    far_field_group_deg: float = 8.0
-    far_field_ratio: float = 4.0
+    far_group_deg: float = 8.0
+    far_group_distance: float = 4.0
 
     def __post_init__(self):
         checks = {
@@ -124,8 +124,8 @@ class FreeWakeModel:
             "tolerance_radius_fraction": self.tolerance_radius_fraction > 0.0,
             "max_iterations": self.max_iterations >= 1,
             "vatistas_n": self.vatistas_n >= 1.0,
-            "far_field_group_deg": 0.0 <= self.far_field_group_deg <= 90.0,
-            "far_field_ratio": self.far_field_ratio >= 2.0,
+            "far_group_deg": 0.0 <= self.far_group_deg <= 90.0,
+            "far_group_distance": self.far_group_distance >= 2.0,
         }
         bad = [name for name, ok in checks.items() if not ok]
         if bad:
@@ -519,11 +519,11 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
 
 
 def _induced(rotors, sources: _Sources, targets, points, row_psi, n_age: int, dphi: float, table_step: float,
-             vatistas_n: float, own_bound: bool, far_group: int = 1, far_ratio: float = 0.0) -> np.ndarray:
+             vatistas_n: float, own_bound: bool, far_group: int = 1, far_distance: float = 0.0) -> np.ndarray:
     """Per-source induced velocity (n_tgt, n_src, n_rows, n_pts, 3) in each target's H' (m/s)
     at ``points`` (n_tgt, n_rows, n_pts, 3); ``targets``: rotor indices; bound vortices of the
     other rotors always, of the target itself when ``own_bound``; the other rotors' vortices
-    with the far-field grouping of ``far_group`` segments at ``far_ratio`` (1: none)."""
+    with the far-field grouping of ``far_group`` segments beyond ``far_distance`` half-extents (1: none)."""
     maps = [_transforms(rotors, t) for t in targets]
     rot = np.ascontiguousarray([m[0] for m in maps])
     off = np.ascontiguousarray([m[1] for m in maps])
@@ -535,7 +535,7 @@ def _induced(rotors, sources: _Sources, targets, points, row_psi, n_age: int, dp
     return _induced_kernel(np.ascontiguousarray(points, dtype=float), np.ascontiguousarray(row_psi, dtype=float), ratio,
                            sources.params, sources.gamma, sources.beta, sources.distortion, float(table_step),
                            np.ascontiguousarray(sources.core), rot, off, sign, bound, far, max(int(far_group), 1),
-                           float(far_ratio), int(n_age), float(dphi), float(vatistas_n))
+                           float(far_distance), int(n_age), float(dphi), float(vatistas_n))
 
 
 def _node_table(rotor: RotorPlacement, beddoes: wake.WakeModel, model: FreeWakeModel) -> np.ndarray:
@@ -783,11 +783,11 @@ def disk_induced_velocity(solution: FreeWakeSolution, target: str, psi_rad, r_m,
     rotors = [solution.rotors[i] for i in group]
     sources = _lifting_line_sources(rotors, solution.beddoes, solution.distortion_m[group])
     model = solution.model
-    n_group = int(round(math.radians(model.far_field_group_deg) / solution.beddoes.dphi_rad))
+    n_group = int(round(math.radians(model.far_group_deg) / solution.beddoes.dphi_rad))
     out = np.zeros((len(solution.rotors),) + points.shape)
     out[group] = _induced(rotors, sources, [group.index(t)], points[None], psi, solution.beddoes.n_age,
                           solution.beddoes.dphi_rad, model.step_rad, solution.beddoes.vatistas_n, False, n_group,
-                          model.far_field_ratio)[0]
+                          model.far_group_distance)[0]
     return out
 
 
