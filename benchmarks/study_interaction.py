@@ -53,6 +53,10 @@ def _spot(row: pd.Series, label: str) -> str:
             f"{row[f'max_{label}_elevation_deg']:.0f}°)").replace("-", "−")
 
 
+def _signed(value: float, digits: int) -> str:
+    return f"{value:+.{digits}f}".replace("-", "−")
+
+
 def _aircraft(results: Path) -> list[str]:
     """Aircraft with a summary.csv, in the study's order."""
     names = [p.parent.name for p in results.glob("*/summary.csv")]
@@ -70,7 +74,8 @@ def level_table(beddoes: Path, free: Path, segments: list[str]) -> str:
         for segment in segments:
             fr, br = f.loc[segment], b.loc[segment]
             lines.append(f"| {aircraft} | {segment[3:]} | {_spot(fr, 'bvispl')} | {_spot(br, 'bvispl')} | "
-                         f"{fr['max_bvispl_db'] - br['max_bvispl_db']:+.1f} | {fr['max_oaspl_db']:.1f} / {br['max_oaspl_db']:.1f} | "
+                         f"{_signed(fr['max_bvispl_db'] - br['max_bvispl_db'], 1)} | "
+                         f"{fr['max_oaspl_db']:.1f} / {br['max_oaspl_db']:.1f} | "
                          f"{fr['max_dba_db']:.1f} / {br['max_dba_db']:.1f} | {THESIS.get((aircraft, segment), '–')} |")
     return "\n".join(lines)
 
@@ -90,8 +95,8 @@ def interaction_table(free: Path, segments: list[str]) -> str:
                 others = rows[rows["source_rotor"] != rotor]
                 lines.append(
                     f"| {aircraft} | {segment[3:]} | {rotor} | {dominant['source_rotor']} ({dominant['bvi_share']:.2f}) | "
-                    f"{own['bvi_share']:.2f} | {others['mean_dup_mps'].sum():+.2f} | "
-                    f"{100.0 * own['thrust_change_before_retrim']:+.1f} %{' (re-trimmed)' if own['retrimmed'] else ''} |")
+                    f"{own['bvi_share']:.2f} | {_signed(others['mean_dup_mps'].sum(), 2)} | "
+                    f"{_signed(100.0 * own['thrust_change_before_retrim'], 1)} %{' (re-trimmed)' if own['retrimmed'] else ''} |")
     return "\n".join(lines)
 
 
