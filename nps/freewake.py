@@ -388,13 +388,18 @@ def _polyline(vx, vy, vz, px, py, pz, nodes, strength, radius, k, j_start, j_end
 
 
 @kernel(inline=True)
-def _bound(px, py, pz, hub, nodes, k, gamma, rc, vatistas_n):
-    """Velocity at P of blade k's bound vortex, straight from the hub centre ``hub`` (3,) to its
-    tip node (strength ``gamma``, core ``rc``)."""
-    h1x, h1y, h1z = px - hub[0], py - hub[1], pz - hub[2]
-    t1x, t1y, t1z = px - nodes[k, 0, 0], py - nodes[k, 0, 1], pz - nodes[k, 0, 2]
-    return wake._segment(h1x, h1y, h1z, math.sqrt(h1x * h1x + h1y * h1y + h1z * h1z),
-                         t1x, t1y, t1z, math.sqrt(t1x * t1x + t1y * t1y + t1z * t1z), gamma, rc, vatistas_n)
+def _add_bound(vx, vy, vz, px, py, pz, hub, nodes, k, gamma, rc, vatistas_n):
+    """Add to (vx, vy, vz) (n_pts,) the velocity at the points (px, py, pz) of blade k's bound
+    vortex, straight from the hub centre ``hub`` (3,) to its tip node (strength ``gamma``, core
+    ``rc``)."""
+    for m in range(px.shape[0]):
+        h1x, h1y, h1z = px[m] - hub[0], py[m] - hub[1], pz[m] - hub[2]
+        t1x, t1y, t1z = px[m] - nodes[k, 0, 0], py[m] - nodes[k, 0, 1], pz[m] - nodes[k, 0, 2]
+        dx, dy, dz = wake._segment(h1x, h1y, h1z, math.sqrt(h1x * h1x + h1y * h1y + h1z * h1z),
+                                   t1x, t1y, t1z, math.sqrt(t1x * t1x + t1y * t1y + t1z * t1z), gamma, rc, vatistas_n)
+        vx[m] += dx
+        vy[m] += dy
+        vz[m] += dz
 
 
 @kernel
@@ -497,23 +502,15 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
                             vx[m], vy[m], vz[m] = _polyline(vx[m], vy[m], vz[m], px[m], py[m], pz[m], nodes, strength,
                                                             radius, k, j0, j1, g_sign, vatistas_n)
                     if bound[t, q]:
-                        for m in range(n_pts):
-                            dx, dy, dz = _bound(px[m], py[m], pz[m], off[t, q], nodes, k, g_sign * strength[k, 0],
-                                                core[q, 0], vatistas_n)
-                            vx[m] += dx
-                            vy[m] += dy
-                            vz[m] += dz
+                        _add_bound(vx, vy, vz, px, py, pz, off[t, q], nodes, k, g_sign * strength[k, 0], core[q, 0],
+                                   vatistas_n)
             else:
                 for k in range(n_blades):
                     wake._polyline_points(px, py, pz, nodes, strength, radius, k, 0, n_age, g_sign, vatistas_n,
                                           scratch[0], scratch[1], scratch[2], scratch[3], vx, vy, vz)
                     if bound[t, q]:
-                        for m in range(n_pts):
-                            dx, dy, dz = _bound(px[m], py[m], pz[m], off[t, q], nodes, k, g_sign * strength[k, 0],
-                                                core[q, 0], vatistas_n)
-                            vx[m] += dx
-                            vy[m] += dy
-                            vz[m] += dz
+                        _add_bound(vx, vy, vz, px, py, pz, off[t, q], nodes, k, g_sign * strength[k, 0], core[q, 0],
+                                   vatistas_n)
             out[t, q, i, :, 0], out[t, q, i, :, 1], out[t, q, i, :, 2] = vx, vy, vz
     return out
 
