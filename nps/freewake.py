@@ -583,6 +583,15 @@ def _node_velocities(rotors, beddoes, model, base, distortion) -> list[np.ndarra
 CONTINUATION_GROWTH = 1.25
 
 
+def circulation_thrust_coefficient(state: wake.WakeState, gamma_mean_m2_s: float | None = None) -> float:
+    """C_T,Γ = B Γ̄_v/(2π Ω R²), Γ̄_v the ψ-mean tip-vortex strength (default: of the state's
+    table): the thrust coefficient of a rotor whose uniform bound circulation is Γ̄_v — what a
+    wake of these tip vortices alone induces on average (vortex-cylinder theory; docs, "Mean
+    inflow of a tip-vortex wake")."""
+    gamma = float(np.mean(state.gamma_table_m2_s)) if gamma_mean_m2_s is None else gamma_mean_m2_s
+    return state.n_blades * gamma / (2.0 * np.pi * state.omega_rad_s * state.radius_m ** 2)
+
+
 def _continuation_rings(rotor: RotorPlacement, x: np.ndarray, gamma_table: np.ndarray, core_m: float,
                         model: FreeWakeModel):
     """Vortex rings (centres (M, 3), radius m, circulations (M,) m²/s, core m) continuing the
@@ -606,8 +615,7 @@ def _continuation_rings(rotor: RotorPlacement, x: np.ndarray, gamma_table: np.nd
     gamma_mean = float(np.mean(gamma_table))
     if length == 0.0 or not gamma_mean > 0.0:
         return None
-    ct_gamma = s.n_blades * gamma_mean / (2.0 * np.pi * s.omega_rad_s * s.radius_m**2)
-    lam = wake.mean_inflow(ct_gamma, s.mu_inplane, s.mu_z)
+    lam = wake.mean_inflow(circulation_thrust_coefficient(s, gamma_mean), s.mu_inplane, s.mu_z)
     velocity = rotor.free_stream_hp_mps - np.array([0.0, 0.0, lam * s.omega_rad_s * s.radius_m])
     speed = float(np.linalg.norm(velocity))
     per_rev = 2.0 * np.pi * speed / s.omega_rad_s

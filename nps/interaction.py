@@ -18,6 +18,12 @@ No double counting (docs/models/wake_bvi.md, "Rotor–rotor interaction"):
   the rotor's thrust by more than the trim tolerance (0.1 %), the rotor is re-trimmed to its
   thrust and hub-moment targets from the aircraft trim with that inflow
   (:func:`nps.bet.trim_rotor`, ``interference``) so the aircraft still balances;
+- momentum level: a wake of tip vortices alone induces the mean (and 1/rev) of a rotor of
+  thrust coefficient C_T,Γ = B Γ̄_v/(2π Ω R²), not the rotor's C_T (the inboard trailed sheet,
+  of the opposite sense, is not modelled); so the 0/1-rev interference of wake q is scaled by
+  C_T,q/C_T,Γ,q — the same momentum level the trim gives every rotor's own mean inflow
+  (:func:`nps.freewake.circulation_thrust_coefficient`). The ≥ 2/rev part keeps the full
+  tip-vortex strength (the local vortex, as for the Beddoes wake);
 - the ≥ 2/rev part of all wakes is the BVI increment (gust response as in :mod:`nps.bvi`).
 
 One coupling pass: the wakes are relaxed with the strengths of the loads tables; the
@@ -102,6 +108,8 @@ def aircraft_bvi_loads(
     solution = freewake.relax(rotors, wake_model, free_model)
     coupled = {r.name: len(solution.group_of(i)) > 1 for i, r in enumerate(rotors)}
     alone = {r.name: freewake.relax([r], wake_model, free_model) for r in rotors if coupled[r.name]}
+    # 0/1-rev of a tip-vortex wake scaled to its rotor's momentum thrust (module doc)
+    momentum = [r.state.ct / freewake.circulation_thrust_coefficient(r.state) for r in rotors]
     results, retrims, rows = {}, {}, []
     for p, rotor in enumerate(rotors):
         name = rotor.name
@@ -120,14 +128,14 @@ def aircraft_bvi_loads(
             high_ut += h_ut
             high_up += h_up
             if q != p:
-                low_ut += d_ut - h_ut
-                low_up += d_up - h_up
-            parts.append((d_up - h_up, h_up))
+                low_ut += momentum[q] * (d_ut - h_ut)
+                low_up += momentum[q] * (d_up - h_up)
+            parts.append(((momentum[q] if q != p else 1.0) * (d_up - h_up), h_up))
         if coupled[name]:
             v_alone = freewake.disk_induced_velocity(alone[name], name, grid.psi_rad, grid.r_m, beta)[0]
             a_ut, a_up = bvi.blade_frame_increments(v[p] - v_alone, grid.psi_rad, beta)
-            low_ut += a_ut - bvi.remove_low_harmonics(a_ut, 1)
-            low_up += a_up - bvi.remove_low_harmonics(a_up, 1)
+            low_ut += momentum[p] * (a_ut - bvi.remove_low_harmonics(a_ut, 1))
+            low_up += momentum[p] * (a_up - bvi.remove_low_harmonics(a_up, 1))
         n_psi = grid.shape[0]
         target = float(row["thrust_N"])
         probe = bvi.loads_with_increments(disk, row, geometry, low_ut, low_up, v.sum(axis=0), bvi.BVIModel(unsteady=False))
