@@ -7,12 +7,12 @@ Synthetic aircraft of identical rotors (tests/validation/multirotor_case.py), 72
   inflow and the F_z change stay below the estimate and the trim tolerance (docs, "Far-apart
   rotors"; coupled, the change would fall as 1/d²: 4.8e-4 of the peak F_z at 25 R, 4.2e-5 at 100 R);
 - (b) side-by-side pair with opposite rotation: mirrored wakes and loads exactly (difference 0);
-- (c) coaxial hover, spacing 0.16 R: κ_int = 1.26, lower rotor's mean inflow 13.5 m/s > upper's
-  11.6 m/s (0.125 R: 1.30; 0.25 R: 1.20);
+- (c) coaxial hover, spacing 0.16 R: κ_int = 1.22, lower rotor's mean inflow 12.4 m/s > upper's
+  11.0 m/s (0.125 R: 1.25; 0.25 R: 1.18); interference at the momentum level (C_T/C_T,Γ = 0.77);
 - (d) tandem of the thesis' proof of concept (two equal rotors in one plane, rotor 2 behind
-  rotor 1, 6° descent at μ = 0.23): rotor 1's wake gives rotor 2 a mean inflow of 9.0 m/s
-  (thrust −43 % before the re-trim) and 68 % of its ≥ 2/rev BVI increment (RMS 7.4 m/s, peak
-  28.3 m/s against 15.1 m/s from its own wake); rotor 2 gives rotor 1 −0.24 m/s (upwash) and
+  rotor 1, 6° descent at μ = 0.23): rotor 1's wake gives rotor 2 a mean inflow of 6.5 m/s
+  (thrust −31 % before the re-trim) and 68 % of its ≥ 2/rev BVI increment (RMS 7.4 m/s, peak
+  28.3 m/s against 15.1 m/s from its own wake); rotor 2 gives rotor 1 −0.17 m/s (upwash) and
   1.5 % of its BVI increment.
 Frames: turning the whole aircraft by one rotation changes nothing (< 1e-9); the far-field
 grouping of other rotors' wakes in the blade-load evaluation stays within 0.26 % of the peak.
