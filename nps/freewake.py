@@ -365,29 +365,6 @@ def _rotor_nodes(p, gamma_tab, beta_tab, table, table_step, core, psi0, n_age, d
 
 
 @kernel(inline=True)
-def _polyline(vx, vy, vz, px, py, pz, nodes, strength, radius, k, j_start, j_end, g_sign, vatistas_n):
-    """(vx, vy, vz) plus the velocity at P of blade k's tip vortex between nodes ``j_start`` and
-    ``j_end``, summed segment by segment (segment j joins nodes j, j+1 and carries their mean Γ
-    and core)."""
-    r1x, r1y, r1z = px - nodes[k, j_start, 0], py - nodes[k, j_start, 1], pz - nodes[k, j_start, 2]
-    n1 = math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z)
-    for j in range(j_start, j_end):
-        r2x, r2y, r2z = px - nodes[k, j + 1, 0], py - nodes[k, j + 1, 1], pz - nodes[k, j + 1, 2]
-        n2 = math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z)
-        dx, dy, dz = wake._segment(
-            r1x, r1y, r1z, n1, r2x, r2y, r2z, n2,
-            g_sign * 0.5 * (strength[k, j] + strength[k, j + 1]),
-            0.5 * (radius[k, j] + radius[k, j + 1]),
-            vatistas_n,
-        )
-        r1x, r1y, r1z, n1 = r2x, r2y, r2z, n2
-        vx += dx
-        vy += dy
-        vz += dz
-    return vx, vy, vz
-
-
-@kernel(inline=True)
 def _add_bound(vx, vy, vz, px, py, pz, hub, nodes, k, gamma, rc, vatistas_n):
     """Add to (vx, vy, vz) (n_pts,) the velocity at the points (px, py, pz) of blade k's bound
     vortex, straight from the hub centre ``hub`` (3,) to its tip node (strength ``gamma``, core
@@ -499,8 +476,9 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
                             n_near += 0 if is_far else 1
                         for e in range(n_near):  # segment by segment where the group is near
                             m = near[e]
-                            vx[m], vy[m], vz[m] = _polyline(vx[m], vy[m], vz[m], px[m], py[m], pz[m], nodes, strength,
-                                                            radius, k, j0, j1, g_sign, vatistas_n)
+                            wake._polyline_points(px[m:m + 1], py[m:m + 1], pz[m:m + 1], nodes, strength, radius, k,
+                                                  j0, j1, g_sign, vatistas_n, scratch[0, :1], scratch[1, :1],
+                                                  scratch[2, :1], scratch[3, :1], vx[m:m + 1], vy[m:m + 1], vz[m:m + 1])
                     if bound[t, q]:
                         _add_bound(vx, vy, vz, px, py, pz, off[t, q], nodes, k, g_sign * strength[k, 0], core[q, 0],
                                    vatistas_n)

@@ -111,20 +111,15 @@ class RotorGeometry:
         psi = np.asarray(psi_rad, dtype=float)[:, None]
         rbar = np.asarray(r_m, dtype=float)[None, :] / self.radius_m
         hhc = sum((amp * np.cos(n * psi - phase) for n, amp, phase in self.higher_harmonic_pitch), np.zeros_like(psi))
-        elastic = sum((c * np.cos(n * psi) + s * np.sin(n * psi) for n, c, s in self.elastic_twist_harmonics),
-                      np.zeros_like(psi))
-        return hhc + rbar * elastic
+        return hhc + rbar * _fourier_series(self.elastic_twist_harmonics, psi)
 
     def prescribed_flap(self, psi_rad) -> tuple[np.ndarray, np.ndarray] | None:
         """(β, dβ/dψ) in rad, (n_psi,), of ``prescribed_flap_harmonics`` at ``psi_rad``; None without them."""
         if not self.prescribed_flap_harmonics:
             return None
         psi = np.asarray(psi_rad, dtype=float)
-        beta = sum((c * np.cos(n * psi) + s * np.sin(n * psi) for n, c, s in self.prescribed_flap_harmonics),
-                   np.zeros_like(psi))
-        rate = sum((n * (s * np.cos(n * psi) - c * np.sin(n * psi)) for n, c, s in self.prescribed_flap_harmonics),
-                   np.zeros_like(psi))
-        return beta, rate
+        rate = tuple((n, n * s, -n * c) for n, c, s in self.prescribed_flap_harmonics)
+        return _fourier_series(self.prescribed_flap_harmonics, psi), _fourier_series(rate, psi)
 
     @classmethod
     def from_config(cls, rotor: Mapping) -> "RotorGeometry":
@@ -175,6 +170,11 @@ class RotorGeometry:
             elastic_twist_harmonics=_degree_harmonics(rotor.get("elastic_twist_harmonics", ())),
             prescribed_flap_harmonics=_degree_harmonics(rotor.get("prescribed_flap", ())),
         )
+
+
+def _fourier_series(harmonics, psi: np.ndarray) -> np.ndarray:
+    """Σ (c_n cos nψ + s_n sin nψ) over ``harmonics`` ((n, c_n, s_n), ...) at ``psi``."""
+    return sum((c * np.cos(n * psi) + s * np.sin(n * psi) for n, c, s in harmonics), np.zeros_like(psi))
 
 
 def _degree_harmonics(entries) -> tuple[tuple[int, float, float], ...]:
