@@ -149,7 +149,8 @@ def wake_state(disk: pd.DataFrame, trim_row: Mapping, ct: float) -> wake.WakeSta
     """The wake's flow state from a trimmed disk table, its trim row and the loads' C_T.
 
     Γ_v(ψ) is the spanwise maximum bound circulation of each azimuth row
-    (:func:`nps.wake.tip_vortex_strength`); β(ψ) the flap angle of the outermost station.
+    (:func:`nps.wake.tip_vortex_strength`), the vortex structure its Betz roll-up
+    (:func:`nps.wake.vortex_profile_table`); β(ψ) the flap angle of the outermost station.
     """
     grid = disk_grid(disk)
     missing = [c for c in ("n_blades", "radius_m", "omega_rad_s", "rotation_sign", "mu_x", "mu_y", "mu_z") if c not in trim_row]
@@ -170,6 +171,7 @@ def wake_state(disk: pd.DataFrame, trim_row: Mapping, ct: float) -> wake.WakeSta
         ct=float(ct),
         gamma_table_m2_s=wake.tip_vortex_strength(gamma),
         beta_table_rad=beta[:, -1].copy(),
+        vortex_profile=wake.vortex_profile_table(grid.r_m, gamma, float(trim_row["radius_m"])),
     )
 
 

@@ -53,7 +53,7 @@ core of :class:`nps.wake.WakeModel` (c/2, chordwise averaging; docs).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Mapping, Sequence
 
 import numpy as np
@@ -269,6 +269,9 @@ class _Sources:
     beta: np.ndarray  # (n_rot, n_tab)
     distortion: np.ndarray  # (n_rot, N, J+1, 3)
     core: np.ndarray  # (n_rot, 3): r_c0, growth coefficient, a1/ν
+    profiles: np.ndarray  # (n_rot, n_rows, M) enclosed-circulation tables (wake.vortex_profiles), zero-padded
+    profile_rows: np.ndarray  # (n_rot,) int: each rotor's table length
+    profile_s2: np.ndarray  # (n_rot,) table scale s² (m²)
 
 
 def _common_tables(rotors: Sequence[RotorPlacement]) -> tuple[np.ndarray, np.ndarray]:
@@ -283,26 +286,34 @@ def _common_tables(rotors: Sequence[RotorPlacement]) -> tuple[np.ndarray, np.nda
     return np.ascontiguousarray([o[0] for o in out]), np.ascontiguousarray([o[1] for o in out])
 
 
-def _sources(rotors, beddoes: wake.WakeModel, distortion, core_radius_chords, core_growth, growth_a1, viscosity) -> _Sources:
+def _sources(rotors, beddoes: wake.WakeModel, distortion, core_radius_chords, core_growth, growth_a1, viscosity,
+             vortex_structure: str) -> _Sources:
     gamma, beta = _common_tables(rotors)
     params = np.ascontiguousarray([wake.wake_scalars(r.state, beddoes) for r in rotors])
     core = np.array([
         [core_radius_chords * r.state.chord_m,
          4.0 * wake.LAMB_OSEEN_ALPHA * viscosity / r.state.omega_rad_s if core_growth else 0.0,
          growth_a1 / viscosity] for r in rotors])
-    return _Sources(params, gamma, beta, np.ascontiguousarray(distortion, dtype=float), core)
+    structure = replace(beddoes, vortex_structure=vortex_structure)
+    tables = [wake.vortex_profiles(r.state, structure) for r in rotors]
+    profiles = np.zeros((len(rotors), max(t[0].shape[0] for t in tables), max(t[0].shape[1] for t in tables)))
+    for q, (table, _) in enumerate(tables):
+        profiles[q, : table.shape[0], : table.shape[1]] = table
+    return _Sources(params, gamma, beta, np.ascontiguousarray(distortion, dtype=float), core, profiles,
+                    np.array([t[0].shape[0] for t in tables], dtype=np.int64), np.array([t[1] for t in tables]))
 
 
 def _physical_sources(rotors, beddoes, model: FreeWakeModel, distortion) -> _Sources:
-    """Node kinematics: r_c0 = max(physical core, floor) · c, growing with age."""
+    """Node kinematics: point vortices, r_c0 = max(physical core, floor) · c, growing with age."""
     return _sources(rotors, beddoes, distortion, max(model.core_radius_chords, model.core_floor_chords),
-                    model.core_growth, model.growth_a1, model.viscosity_m2_s)
+                    model.core_growth, model.growth_a1, model.viscosity_m2_s, "point")
 
 
 def _lifting_line_sources(rotors, beddoes: wake.WakeModel, distortion) -> _Sources:
-    """Blade-load evaluation: the Beddoes model's lifting-line core (as the prescribed wake)."""
+    """Blade-load evaluation: the Beddoes model's lifting-line core and vortex structure (as the
+    prescribed wake)."""
     return _sources(rotors, beddoes, distortion, beddoes.core_radius_chords, beddoes.core_growth, beddoes.growth_a1,
-                    beddoes.viscosity_m2_s)
+                    beddoes.viscosity_m2_s, beddoes.vortex_structure)
 
 
 def _transforms(rotors: Sequence[RotorPlacement], target: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -349,9 +360,11 @@ def _distortion_at(table, psi, phi, step):
 
 
 @kernel
-def _rotor_nodes(p, gamma_tab, beta_tab, table, table_step, core, psi0, n_age, dphi, nodes, strength, radius):
+def _rotor_nodes(p, gamma_tab, beta_tab, table, table_step, core, psi0, n_age, dphi, n_rows, nodes, strength, radius,
+                 row):
     """Nodes (B, n_age+1, 3) in the rotor's own H' when its blade 0 is at ``psi0``: Beddoes
-    geometry plus the interpolated distortion; Γ per node and core radius per node."""
+    geometry plus the interpolated distortion; Γ, core radius and enclosed-circulation table
+    row (of ``n_rows``, :func:`nps.wake.profile_row`) per node."""
     n_blades = int(p[1])
     for k in range(n_blades):
         psi_k = psi0 + 2.0 * math.pi * k / n_blades
@@ -362,6 +375,7 @@ def _rotor_nodes(p, gamma_tab, beta_tab, table, table_step, core, psi0, n_age, d
             nodes[k, j, 0], nodes[k, j, 1], nodes[k, j, 2] = x + dx, y + dy, z + dz
             strength[k, j] = g
             radius[k, j] = math.sqrt(core[0] * core[0] + core[1] * (1.0 + core[2] * abs(g)) * phi)
+            row[k, j] = wake.profile_row(psi_k - phi, n_rows)
 
 
 @kernel(inline=True)
@@ -373,7 +387,8 @@ def _add_bound(vx, vy, vz, px, py, pz, hub, nodes, k, gamma, rc, vatistas_n):
         h1x, h1y, h1z = px[m] - hub[0], py[m] - hub[1], pz[m] - hub[2]
         t1x, t1y, t1z = px[m] - nodes[k, 0, 0], py[m] - nodes[k, 0, 1], pz[m] - nodes[k, 0, 2]
         dx, dy, dz = wake._segment(h1x, h1y, h1z, math.sqrt(h1x * h1x + h1y * h1y + h1z * h1z),
-                                   t1x, t1y, t1z, math.sqrt(t1x * t1x + t1y * t1y + t1z * t1z), gamma, rc, vatistas_n)
+                                   t1x, t1y, t1z, math.sqrt(t1x * t1x + t1y * t1y + t1z * t1z), gamma, rc, vatistas_n,
+                                   False, wake.POINT_VORTEX_PROFILE[0], 1.0)
         vx[m] += dx
         vy[m] += dy
         vz[m] += dz
@@ -409,8 +424,8 @@ def _far_groups(nodes, strength, radius, n_blades, n_age, group, ratio, groups):
 
 
 @kernel(parallel=True)
-def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortion, table_step, core, rot, off, sign,
-                    bound, far, group, ratio, n_age, dphi, vatistas_n):
+def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortion, table_step, core, profiles,
+                    profile_rows, profile_s2, rot, off, sign, bound, far, group, ratio, n_age, dphi, vatistas_n):
     """Velocity (n_tgt, n_src, n_rows, n_pts, 3) induced at ``points`` (n_tgt, n_rows, n_pts, 3)
     by every source rotor's tip vortices, in each target rotor's H'. Row i of target t is the
     instant when the target's blade 0 is at ``row_psi[i]``; source q's blade 0 is then at
@@ -419,7 +434,10 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
     blades' bound vortices, straight from the hub centre to the tip node (strength Γ_v, core
     r_c0), closing each tip vortex into a horseshoe. ``far[t, q]``: far-field grouping of
     source q's vortices (:func:`_far_groups`): a group of ``group`` segments farther than
-    ``ratio`` times its half-extent from the point counts as its chord segment."""
+    ``ratio`` times its half-extent from the point counts as its chord segment (with the
+    enclosed-circulation row of its first node). ``profiles`` (n_src, n_rows, M), ``profile_rows``
+    (n_src,), ``profile_s2`` (n_src,): the sources' vortex structure (:class:`_Sources`); bound
+    vortices are point vortices."""
     n_src = params.shape[0]
     n_tgt, n_rows, n_pts = points.shape[0], points.shape[1], points.shape[2]
     out = np.zeros((n_tgt, n_src, n_rows, n_pts, 3))
@@ -433,6 +451,7 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
         nodes = np.empty((max_b, n_age + 1, 3))
         strength = np.empty((max_b, n_age + 1))
         radius = np.empty((max_b, n_age + 1))
+        row = np.empty((max_b, n_age + 1), dtype=np.int64)
         groups = np.empty((max_b, n_groups, 6))
         px, py, pz = points[t, i, :, 0].copy(), points[t, i, :, 1].copy(), points[t, i, :, 2].copy()
         scratch = np.empty((4, n_pts))
@@ -441,7 +460,8 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
         for q in range(n_src):
             n_blades = int(params[q, 1])
             _rotor_nodes(params[q], gamma[q], beta[q], distortion[q], table_step, core[q],
-                         omega_ratio[t, q] * row_psi[i], n_age, dphi, nodes, strength, radius)
+                         omega_ratio[t, q] * row_psi[i], n_age, dphi, profile_rows[q], nodes, strength, radius, row)
+            q_profiles, s2 = profiles[q], profile_s2[q]
             for k in range(n_blades):
                 for j in range(n_age + 1):
                     x, y, z = nodes[k, j, 0], nodes[k, j, 1], nodes[k, j, 2]
@@ -467,7 +487,8 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
                             dx, dy, dz = wake._segment(
                                 r1x, r1y, r1z, math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z),
                                 r2x, r2y, r2z, math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z),
-                                g_sign * groups[k, g, 4], groups[k, g, 5], vatistas_n,
+                                g_sign * groups[k, g, 4], groups[k, g, 5], vatistas_n, q_profiles.shape[1] > 1,
+                                q_profiles[row[k, j0]], s2,
                             )
                             vx[m] += dx if is_far else 0.0
                             vy[m] += dy if is_far else 0.0
@@ -476,16 +497,18 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
                             n_near += 0 if is_far else 1
                         for e in range(n_near):  # segment by segment where the group is near
                             m = near[e]
-                            wake._polyline_points(px[m:m + 1], py[m:m + 1], pz[m:m + 1], nodes, strength, radius, k,
-                                                  j0, j1, g_sign, vatistas_n, scratch[0, :1], scratch[1, :1],
-                                                  scratch[2, :1], scratch[3, :1], vx[m:m + 1], vy[m:m + 1], vz[m:m + 1])
+                            wake._polyline_points(px[m:m + 1], py[m:m + 1], pz[m:m + 1], nodes, strength, radius,
+                                                  q_profiles, row, s2, k, j0, j1, g_sign, vatistas_n, scratch[0, :1],
+                                                  scratch[1, :1], scratch[2, :1], scratch[3, :1], vx[m:m + 1],
+                                                  vy[m:m + 1], vz[m:m + 1])
                     if bound[t, q]:
                         _add_bound(vx, vy, vz, px, py, pz, off[t, q], nodes, k, g_sign * strength[k, 0], core[q, 0],
                                    vatistas_n)
             else:
                 for k in range(n_blades):
-                    wake._polyline_points(px, py, pz, nodes, strength, radius, k, 0, n_age, g_sign, vatistas_n,
-                                          scratch[0], scratch[1], scratch[2], scratch[3], vx, vy, vz)
+                    wake._polyline_points(px, py, pz, nodes, strength, radius, q_profiles, row, s2, k, 0, n_age,
+                                          g_sign, vatistas_n, scratch[0], scratch[1], scratch[2], scratch[3], vx, vy,
+                                          vz)
                     if bound[t, q]:
                         _add_bound(vx, vy, vz, px, py, pz, off[t, q], nodes, k, g_sign * strength[k, 0], core[q, 0],
                                    vatistas_n)
@@ -509,7 +532,8 @@ def _induced(rotors, sources: _Sources, targets, points, row_psi, n_age: int, dp
     far = np.ascontiguousarray([[q != t for q in range(len(rotors))] for t in targets], dtype=np.bool_)
     return _induced_kernel(np.ascontiguousarray(points, dtype=float), np.ascontiguousarray(row_psi, dtype=float), ratio,
                            sources.params, sources.gamma, sources.beta, sources.distortion, float(table_step),
-                           np.ascontiguousarray(sources.core), rot, off, sign, bound, far, max(int(far_group), 1),
+                           np.ascontiguousarray(sources.core), sources.profiles, sources.profile_rows,
+                           sources.profile_s2, rot, off, sign, bound, far, max(int(far_group), 1),
                            float(far_distance), int(n_age), float(dphi), float(vatistas_n))
 
 
@@ -796,6 +820,7 @@ def _snapshot(solution, rotor, psi_blade_rad, n_age, step):
     nodes = np.empty((n_b, n_age + 1, 3))
     strength = np.empty((n_b, n_age + 1))
     radius = np.empty((n_b, n_age + 1))
+    row = np.empty((n_b, n_age + 1), dtype=np.int64)
     _rotor_nodes(sources.params[q], sources.gamma[q], sources.beta[q], sources.distortion[q], solution.model.step_rad,
-                 sources.core[q], float(psi_blade_rad), n_age, step, nodes, strength, radius)
+                 sources.core[q], float(psi_blade_rad), n_age, step, 1, nodes, strength, radius, row)
     return nodes, strength, radius

@@ -20,6 +20,21 @@ Vortex strength: Γ_v(ψ_v) = max_r Γ(ψ_v, r), the bound circulation (Γ = L'/
 rolled up outboard of its spanwise maximum (Betz). Core: Vatistas, n = 2 (eq. 5.15), radius
 r_c0 = ``core_radius_chords`` · c, optionally grown with age (Lamb–Oseen/Squire):
 r_c² = r_c0² + 4 α δ ν φ/Ω, α = 1.25643, δ = 1 + a₁ Γ/ν.
+
+Vortex structure (``WakeModel.vortex_structure``): ``"betz"`` gives each vortex the radial
+distribution of circulation that Betz's roll-up makes of the sheet trailed outboard of the
+circulation peak (Betz 1932; Donaldson 1971; Rossow 1973): the vorticity trailed between y and
+the tip lies within ρ(y) = ∫_y^R Γ dr / Γ(y) of the vortex centre, so the circulation enclosed
+within ρ(y) is Γ(y) (:func:`betz_enclosed_circulation`, fraction B = Γ_enclosed/Γ_v). Each
+annulus dΓ_enclosed(ρ) of that distribution induces as a Vatistas vortex whose core is its own
+radius or the model's core, whichever is larger, so a segment induces the point-vortex velocity
+times the structure factor
+
+    T(r_p) = ∫ dB(ρ) (r_c^{2n} + r_p^{2n})^{1/n} / (max(ρ, r_c)^{2n} + r_p^{2n})^{1/n}
+
+(:func:`structure_factor_table`; T ≡ 1 when all circulation lies within r_c, T → 1 far away).
+A vortex rolled up from a narrow tip-loaded sheet stays concentrated, one from a sheet half a
+radius wide is diffuse. ``"point"`` is the thesis' point vortex (T ≡ 1).
 """
 
 from __future__ import annotations
@@ -34,6 +49,11 @@ import pandas as pd
 
 LAMB_OSEEN_ALPHA = 1.25643
 AIR_KINEMATIC_VISCOSITY_M2_S = 1.5e-5
+VORTEX_STRUCTURES = ("betz", "point")
+PROFILE_POINTS = 129  # vortex-structure tables: values at u_m = m / (PROFILE_POINTS − 1)
+PROFILE_SCALE_RADII = 0.1  # s / R of the table's radius mapping r_p² = s² u / (1 − u)
+STRUCTURE_DEGREE = 10  # T(u) as a polynomial of this degree in x = 2u − 1 per release azimuth
+POINT_VORTEX_PROFILE = np.ones((1, 1))  # one coefficient: T ≡ 1 (point vortex)
 
 
 @dataclass(frozen=True)
@@ -45,7 +65,8 @@ class WakeModel:
     ``steps_per_rev``: vortex segments per revolution of wake age (segment length 2π/N rad of
     age); ``core_radius_chords``: r_c0 / c; ``core_growth``: Squire core growth on/off with
     ``growth_a1`` (Bhagwat & Leishman turbulence coefficient) and ``viscosity_m2_s``;
-    ``release_radius_fraction``: r_r.
+    ``release_radius_fraction``: r_r; ``vortex_structure``: ``"betz"`` (rolled-up circulation
+    distribution, module doc) or ``"point"`` (the thesis' point vortex).
     """
 
     a_skew: float = 0.5
@@ -60,9 +81,11 @@ class WakeModel:
     viscosity_m2_s: float = AIR_KINEMATIC_VISCOSITY_M2_S
     release_radius_fraction: float = 1.0
     vatistas_n: float = 2.0
+    vortex_structure: str = "betz"
 
     def __post_init__(self):
         checks = {
+            "vortex_structure": self.vortex_structure in VORTEX_STRUCTURES,
             "d_contraction": 0.0 < self.d_contraction <= 1.0,
             "revolutions": self.revolutions > 0.0,
             "steps_per_rev": self.steps_per_rev >= 8,
@@ -95,6 +118,7 @@ class WakeModel:
             d_contraction=float(wake["D"]),
             core_radius_chords=float(wake["core_radius_chords"]),
             core_growth=bool(wake["core_growth"]),
+            vortex_structure=str(wake.get("vortex_structure", "betz")),
             revolutions=float(revolutions),
             steps_per_rev=int(steps_per_rev),
         )
@@ -107,7 +131,9 @@ class WakeState:
     ``psi_table_rad``: uniform periodic release azimuths ψ_i = 2π i / N (rotor's own sense);
     ``gamma_table_m2_s``: tip-vortex strength at release (> 0 for positive lift);
     ``beta_table_rad``: blade flap angle at release. ``mu_y`` is the hub-frame value (the
-    ccw-equivalent μ_y' = s μ_y is used internally).
+    ccw-equivalent μ_y' = s μ_y is used internally). ``vortex_profile``: optional enclosed-
+    circulation fractions B (N, PROFILE_POINTS) of the rolled-up vortex per release azimuth
+    (:func:`vortex_profile_table`), needed by ``WakeModel(vortex_structure="betz")``.
     """
 
     radius_m: float
@@ -121,11 +147,17 @@ class WakeState:
     ct: float
     gamma_table_m2_s: np.ndarray
     beta_table_rad: np.ndarray
+    vortex_profile: np.ndarray | None = None
 
     def __post_init__(self):
         gamma = np.asarray(self.gamma_table_m2_s, dtype=float)
         beta = np.asarray(self.beta_table_rad, dtype=float)
         problems = []
+        if self.vortex_profile is not None:
+            profile = np.asarray(self.vortex_profile, dtype=float)
+            if profile.shape != (gamma.size, PROFILE_POINTS) or not np.all((profile >= 0.0) & (profile <= 1.0)):
+                problems.append(f"vortex_profile must be ({gamma.size}, {PROFILE_POINTS}) fractions in [0, 1], "
+                                f"got shape {profile.shape}")
         if gamma.ndim != 1 or gamma.size < 4 or beta.shape != gamma.shape:
             problems.append(f"gamma/beta tables must be 1-D of equal length >= 4, got {gamma.shape}, {beta.shape}")
         if not (np.isfinite(gamma).all() and np.isfinite(beta).all()):
@@ -251,18 +283,35 @@ def _core_radius(p, gamma, phi):
 
 
 @nb.njit(cache=True, inline="always")
-def _segment(r1x, r1y, r1z, n1, r2x, r2y, r2z, n2, gamma, rc, n):
+def _structure_factor(coefficients, rp2, s2):
+    """T(r_p): the polynomial ``coefficients`` (STRUCTURE_DEGREE + 1,) (power basis, constant
+    first) in x = 2u − 1, u = r_p² / (r_p² + s²) (:func:`structure_factor_coefficients`); no
+    table look-up, so the loop over points still vectorises. Non-finite r_p² reads T(0)."""
+    u = rp2 / (rp2 + s2)
+    x = 2.0 * min(u, 1.0) - 1.0 if u >= 0.0 else -1.0
+    t = coefficients[STRUCTURE_DEGREE]
+    for d in range(STRUCTURE_DEGREE - 1, -1, -1):
+        t = t * x + coefficients[d]
+    return t
+
+
+@nb.njit(cache=True, inline="always")
+def _segment(r1x, r1y, r1z, n1, r2x, r2y, r2z, n2, gamma, rc, n, structured, profile, s2):
     """Velocity at P induced by the straight vortex segment A→B (eq. 5.10–5.15, Vatistas).
 
     Arguments are r1 = P − A, r2 = P − B and their norms (so that a polyline sweep reuses
     each node's vector). With r0 = B − A = r1 − r2 and r_p = |r1×r2|/|r0| (distance to the
     segment's line):
 
-        V = Γ/(4π) (r1×r2) r0·(r1/|r1| − r2/|r2|) / (|r0|² (r_c^{2n} + r_p^{2n})^{1/n})
+        V = Γ T(r_p)/(4π) (r1×r2) r0·(r1/|r1| − r2/|r2|) / (|r0|² (r_c^{2n} + r_p^{2n})^{1/n})
 
-    which is eq. 5.15 (with ê r_p = r1×r2/|r0|). Finite everywhere; zero on the line itself.
-    Branch-free (a degenerate segment, P on an end node or a zero denominator select k = 0), so
-    that loops over points vectorise (:func:`_polyline_points`).
+    which is eq. 5.15 (with ê r_p = r1×r2/|r0|) times the vortex-structure factor T of
+    ``profile`` when ``structured`` (one release azimuth's coefficients, :func:`_structure_factor`
+    with the scale ``s2`` = s²); the point vortex (``structured`` False, T ≡ 1) is eq. 5.15 itself. Finite
+    everywhere; zero on the line itself. Branch-free in the geometry (a degenerate segment, P on
+    an end node or a zero denominator select k = 0), so that loops over points vectorise
+    (:func:`_polyline_points`; pass ``structured`` as a literal so that the compiler drops the
+    unused branch).
     """
     r0x, r0y, r0z = r1x - r2x, r1y - r2y, r1z - r2z
     cx = r1y * r2z - r1z * r2y
@@ -275,26 +324,47 @@ def _segment(r1x, r1y, r1z, n1, r2x, r2y, r2z, n2, gamma, rc, n):
         den = math.sqrt(rc * rc * rc * rc + rp2 * rp2)
     else:
         den = (rc ** (2.0 * n) + rp2**n) ** (1.0 / n)
+    if structured:
+        gamma = gamma * _structure_factor(profile, rp2, s2)
     k = gamma / (4.0 * math.pi) * dot / (r0sq * den)
     k = k if (r0sq != 0.0) & (n1 != 0.0) & (n2 != 0.0) & (den != 0.0) else 0.0
     return k * cx, k * cy, k * cz
 
 
 @nb.njit(cache=True, inline="always")
-def _polyline_points(px, py, pz, nodes, strength, core, k, j_start, j_end, g_sign, n, r1x, r1y, r1z, n1, vx, vy, vz):
+def _polyline_points(px, py, pz, nodes, strength, core, profiles, row, s2, k, j_start, j_end, g_sign, n,
+                     r1x, r1y, r1z, n1, vx, vy, vz):
     """Add to (vx, vy, vz) (n_pts,) the velocity at the points (px, py, pz) (n_pts,) of blade k's
     tip vortex between nodes ``j_start`` and ``j_end`` of ``nodes`` (B, J+1, 3): segment j joins
-    nodes j and j+1 and carries g_sign · their mean strength and their mean core. Segment-outer,
-    point-inner (vectorises); each point sums segment by segment in order. r1x … n1 (n_pts,):
-    scratch."""
-    if n == 2.0:  # the literal lets the compiler drop the general-n power law from the loop
-        _sweep(px, py, pz, nodes, strength, core, k, j_start, j_end, g_sign, 2.0, r1x, r1y, r1z, n1, vx, vy, vz)
+    nodes j and j+1 and carries g_sign · their mean strength, their mean core and the
+    structure-factor coefficients ``profiles[row[k, j]]`` (scale ``s2``; :func:`_segment`; one
+    column: point vortex).
+    Segment-outer, point-inner (vectorises); each point sums segment by segment in order.
+    r1x … n1 (n_pts,): scratch."""
+    # literals let the compiler drop the structure factor (point vortex) and the general-n power law
+    if profiles.shape[1] == 1:
+        _sweep_n(px, py, pz, nodes, strength, core, profiles, row, s2, k, j_start, j_end, g_sign, n, False,
+                 r1x, r1y, r1z, n1, vx, vy, vz)
     else:
-        _sweep(px, py, pz, nodes, strength, core, k, j_start, j_end, g_sign, n, r1x, r1y, r1z, n1, vx, vy, vz)
+        _sweep_n(px, py, pz, nodes, strength, core, profiles, row, s2, k, j_start, j_end, g_sign, n, True,
+                 r1x, r1y, r1z, n1, vx, vy, vz)
 
 
 @nb.njit(cache=True, inline="always")
-def _sweep(px, py, pz, nodes, strength, core, k, j_start, j_end, g_sign, n, r1x, r1y, r1z, n1, vx, vy, vz):
+def _sweep_n(px, py, pz, nodes, strength, core, profiles, row, s2, k, j_start, j_end, g_sign, n, structured,
+             r1x, r1y, r1z, n1, vx, vy, vz):
+    """:func:`_sweep` with the Vatistas exponent as a literal where it is 2."""
+    if n == 2.0:
+        _sweep(px, py, pz, nodes, strength, core, profiles, row, s2, k, j_start, j_end, g_sign, 2.0, structured,
+               r1x, r1y, r1z, n1, vx, vy, vz)
+    else:
+        _sweep(px, py, pz, nodes, strength, core, profiles, row, s2, k, j_start, j_end, g_sign, n, structured,
+               r1x, r1y, r1z, n1, vx, vy, vz)
+
+
+@nb.njit(cache=True, inline="always")
+def _sweep(px, py, pz, nodes, strength, core, profiles, row, s2, k, j_start, j_end, g_sign, n, structured,
+           r1x, r1y, r1z, n1, vx, vy, vz):
     """The loops of :func:`_polyline_points`."""
     n_pts = px.shape[0]
     for m in range(n_pts):
@@ -304,10 +374,12 @@ def _sweep(px, py, pz, nodes, strength, core, k, j_start, j_end, g_sign, n, r1x,
         ax, ay, az = nodes[k, j + 1, 0], nodes[k, j + 1, 1], nodes[k, j + 1, 2]
         gamma = g_sign * 0.5 * (strength[k, j] + strength[k, j + 1])
         rc = 0.5 * (core[k, j] + core[k, j + 1])
+        profile = profiles[row[k, j]]
         for m in range(n_pts):
             r2x, r2y, r2z = px[m] - ax, py[m] - ay, pz[m] - az
             n2 = math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z)
-            dx, dy, dz = _segment(r1x[m], r1y[m], r1z[m], n1[m], r2x, r2y, r2z, n2, gamma, rc, n)
+            dx, dy, dz = _segment(r1x[m], r1y[m], r1z[m], n1[m], r2x, r2y, r2z, n2, gamma, rc, n, structured, profile,
+                                  s2)
             r1x[m], r1y[m], r1z[m], n1[m] = r2x, r2y, r2z, n2
             vx[m] += dx
             vy[m] += dy
@@ -324,7 +396,8 @@ def _segments_kernel(points, starts, ends, gamma, rc, n):
             r2x, r2y, r2z = points[i, 0] - ends[j, 0], points[i, 1] - ends[j, 1], points[i, 2] - ends[j, 2]
             n1 = math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z)
             n2 = math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z)
-            dx, dy, dz = _segment(r1x, r1y, r1z, n1, r2x, r2y, r2z, n2, gamma[j], rc[j], n)
+            dx, dy, dz = _segment(r1x, r1y, r1z, n1, r2x, r2y, r2z, n2, gamma[j], rc[j], n, False, POINT_VORTEX_PROFILE[0],
+                                  1.0)
             vx += dx
             vy += dy
             vz += dz
@@ -351,12 +424,20 @@ def segment_induced_velocity(points, starts, ends, gamma_m2_s, core_radius_m, va
     return _segments_kernel(points, starts, ends, gamma, rc, float(vatistas_n))
 
 
+@nb.njit(cache=True, inline="always")
+def profile_row(psi_v, n_rows):
+    """Row of a periodic table of ``n_rows`` release azimuths ψ_i = 2π i / n nearest to ψ_v."""
+    return int(math.floor((psi_v / (2.0 * math.pi)) % 1.0 * n_rows + 0.5)) % n_rows
+
+
 @nb.njit(cache=True)
-def _blade_wake(p, gamma_tab, beta_tab, psi_blade, n_age, nodes, strength, core):
+def _blade_wake(p, gamma_tab, beta_tab, psi_blade, n_age, n_rows, nodes, strength, core, row):
     """Nodes of every blade's tip vortex when blade 0 is at ``psi_blade`` (into given arrays).
 
-    nodes (B, n_age+1, 3) in m (H'); strength Γ(ψ_v) and core radius r_c(Γ, φ) per node
-    (B, n_age+1). A segment carries the mean of its two nodes' values.
+    nodes (B, n_age+1, 3) in m (H'); strength Γ(ψ_v), core radius r_c(Γ, φ) and the row of the
+    structure-factor table (``n_rows`` rows, :func:`profile_row` of ψ_v) per node
+    (B, n_age+1). A segment carries the mean of its two nodes' strengths and cores and the
+    first node's row.
     """
     n_blades = int(p[1])
     dphi = p[13]
@@ -368,14 +449,17 @@ def _blade_wake(p, gamma_tab, beta_tab, psi_blade, n_age, nodes, strength, core)
             nodes[k, j, 0], nodes[k, j, 1], nodes[k, j, 2] = x, y, z
             strength[k, j] = g
             core[k, j] = _core_radius(p, g, phi)
+            row[k, j] = profile_row(psi_k - phi, n_rows)
 
 
 @nb.njit(cache=True, parallel=True, error_model="numpy")
-def _disk_kernel(p, gamma_tab, beta_tab, psi_eval, points, n_age):
+def _disk_kernel(p, gamma_tab, beta_tab, profiles, s2, psi_eval, points, n_age):
     """Induced velocity (H', m/s) at points (n_psi, n_r, 3) when blade 0 is at psi_eval[i].
 
     Each azimuth row builds its own wake snapshot (periodic flight: the wake seen at ψ_b
-    depends only on ψ_b), so rows run in parallel.
+    depends only on ψ_b), so rows run in parallel. ``profiles`` (n_rows, STRUCTURE_DEGREE + 1):
+    structure-factor coefficients per release azimuth, or (1, 1) for the point vortex
+    (:func:`vortex_profiles`), scale ``s2`` (m²).
     """
     n_psi, n_r = points.shape[0], points.shape[1]
     n_blades = int(p[1])
@@ -385,12 +469,13 @@ def _disk_kernel(p, gamma_tab, beta_tab, psi_eval, points, n_age):
         nodes = np.empty((n_blades, n_age + 1, 3))
         strength = np.empty((n_blades, n_age + 1))
         core = np.empty((n_blades, n_age + 1))
-        _blade_wake(p, gamma_tab, beta_tab, psi_eval[i], n_age, nodes, strength, core)
+        row = np.empty((n_blades, n_age + 1), dtype=np.int64)
+        _blade_wake(p, gamma_tab, beta_tab, psi_eval[i], n_age, profiles.shape[0], nodes, strength, core, row)
         px, py, pz = points[i, :, 0].copy(), points[i, :, 1].copy(), points[i, :, 2].copy()
         scratch = np.empty((4, n_r))
         vx, vy, vz = np.zeros(n_r), np.zeros(n_r), np.zeros(n_r)
         for k in range(n_blades):
-            _polyline_points(px, py, pz, nodes, strength, core, k, 0, n_age, 1.0, n,
+            _polyline_points(px, py, pz, nodes, strength, core, profiles, row, s2, k, 0, n_age, 1.0, n,
                              scratch[0], scratch[1], scratch[2], scratch[3], vx, vy, vz)
         out[i, :, 0], out[i, :, 1], out[i, :, 2] = vx, vy, vz
     return out
@@ -422,7 +507,8 @@ def wake_snapshot(state: WakeState, model: WakeModel, psi_blade_rad: float) -> W
     core = np.empty((state.n_blades, n_age + 1))
     gamma_tab = np.ascontiguousarray(state.gamma_table_m2_s, dtype=float)
     beta_tab = np.ascontiguousarray(state.beta_table_rad, dtype=float)
-    _blade_wake(p, gamma_tab, beta_tab, float(psi_blade_rad), n_age, nodes, strength, core)
+    row = np.empty((state.n_blades, n_age + 1), dtype=np.int64)
+    _blade_wake(p, gamma_tab, beta_tab, float(psi_blade_rad), n_age, 1, nodes, strength, core, row)
     return WakeSnapshot(float(psi_blade_rad), nodes, np.arange(n_age + 1) * model.dphi_rad, strength, core)
 
 
@@ -446,14 +532,108 @@ def disk_induced_velocity(state: WakeState, model: WakeModel, psi_rad, r_m, beta
     psi = np.ascontiguousarray(psi_rad, dtype=float)
     points = np.ascontiguousarray(blade_points(psi, r_m, beta_rad))
     p = wake_scalars(state, model)
+    profiles, s2 = vortex_profiles(state, model)
     return _disk_kernel(
         p,
         np.ascontiguousarray(state.gamma_table_m2_s, dtype=float),
         np.ascontiguousarray(state.beta_table_rad, dtype=float),
+        profiles,
+        s2,
         psi,
         points,
         model.n_age,
     )
+
+
+def vortex_profiles(state: WakeState, model: WakeModel) -> tuple[np.ndarray, float]:
+    """(structure-factor coefficients (n_rows, STRUCTURE_DEGREE + 1), scale s² in m²) of the
+    model's vortex structure: the state's Betz roll-up with the model's core r_c0 for ``"betz"``
+    (:func:`structure_factor_table`, :func:`structure_factor_coefficients`), the one-coefficient
+    point vortex for ``"point"``."""
+    if model.vortex_structure == "point":
+        return POINT_VORTEX_PROFILE, 1.0
+    if state.vortex_profile is None:
+        raise ValueError("WakeModel(vortex_structure='betz') needs WakeState.vortex_profile (the loads' "
+                         "circulation through nps.wake.vortex_profile_table; nps.bvi.wake_state builds it)")
+    scale = PROFILE_SCALE_RADII * state.radius_m
+    table = structure_factor_table(state.vortex_profile, scale, model.core_radius_chords * state.chord_m,
+                                   model.vatistas_n)
+    return structure_factor_coefficients(table), scale * scale
+
+
+def structure_factor_coefficients(table) -> np.ndarray:
+    """Power-basis coefficients (n_rows, STRUCTURE_DEGREE + 1) in x = 2u − 1 of the least-squares
+    Chebyshev fit of each row of a structure-factor table on u_m = m / (M − 1) (fit error
+    ≤ 4e-4 on HART-II's rows, tests/unit/test_wake.py)."""
+    t = np.asarray(table, dtype=float)
+    x = np.linspace(-1.0, 1.0, t.shape[1])
+    cheb = np.polynomial.chebyshev.chebfit(x, t.T, STRUCTURE_DEGREE)  # (degree + 1, n_rows)
+    return np.ascontiguousarray([np.polynomial.chebyshev.cheb2poly(c) for c in cheb.T], dtype=float)
+
+
+def profile_radii(scale_m: float) -> np.ndarray:
+    """Radii ρ_m = s √(u_m / (1 − u_m)) (m) of the vortex-structure tables (the last is +inf)."""
+    u = np.linspace(0.0, 1.0, PROFILE_POINTS)
+    with np.errstate(divide="ignore"):
+        return scale_m * np.sqrt(u / (1.0 - u))
+
+
+def structure_factor_table(enclosed_fraction, scale_m: float, core_radius_m: float, vatistas_n: float = 2.0) -> np.ndarray:
+    """Structure factor T (n_rows, M) of enclosed-circulation fractions B (n_rows, M) on the
+    :func:`profile_radii` grid (module doc): the increment of B between two grid radii counts at
+    their mean radius (the last, infinite interval carries no circulation once B = 1)."""
+    b = np.asarray(enclosed_fraction, dtype=float)
+    rho = profile_radii(scale_m)
+    r = rho[:-1]
+    mid = 0.5 * (rho[1:-1] + rho[:-2])
+    two_n = 2.0 * vatistas_n
+    point = (core_radius_m**two_n + r[:, None] ** two_n) ** (1.0 / vatistas_n)
+    weights = point / (np.maximum(mid, core_radius_m)[None, :] ** two_n + r[:, None] ** two_n) ** (1.0 / vatistas_n)
+    table = np.ones_like(b)
+    table[:, :-1] = b[:, :1] + np.diff(b[:, :-1], axis=1) @ weights.T
+    return np.ascontiguousarray(table)
+
+
+def betz_enclosed_circulation(r_m, circulation_m2_s, radius_m: float) -> tuple[np.ndarray, np.ndarray]:
+    """Betz roll-up of one blade's trailed sheet: (ρ (m), Γ_enclosed (m²/s)), ascending in ρ.
+
+    The vorticity trailed outboard of y (between the circulation peak and the tip, where
+    Γ(R) = 0 closes the distribution) rolls up within ρ(y) = ∫_y^R Γ dr / Γ(y) of the vortex
+    centre (the distance from y to the centroid of that vorticity; Betz 1932, Donaldson 1971),
+    so Γ_enclosed(ρ(y)) = Γ(y). Trapezoidal integration over the stations ``r_m`` (ascending,
+    < R) plus the tip; stations with Γ ≤ 0 (negative tip loading) trail no positive vorticity
+    and are skipped; the enclosed circulation is made monotone (running maximum from the centre).
+    Starts with (0, 0) and ends at (ρ_max, Γ_max); empty beyond (0, 0) when Γ_max ≤ 0.
+    """
+    r = np.append(np.asarray(r_m, dtype=float), float(radius_m))
+    gamma = np.append(np.asarray(circulation_m2_s, dtype=float), 0.0)
+    peak = int(np.argmax(gamma))
+    outer_integral = np.concatenate([np.cumsum((0.5 * (gamma[1:] + gamma[:-1]) * np.diff(r))[::-1])[::-1], [0.0]])
+    keep = np.arange(r.size) >= peak
+    keep &= gamma > 0.0
+    rho = outer_integral[keep] / gamma[keep]
+    enclosed = gamma[keep]
+    order = np.argsort(rho, kind="stable")
+    rho, enclosed = rho[order], np.maximum.accumulate(enclosed[order])
+    return np.concatenate([[0.0], rho]), np.concatenate([[0.0], enclosed])
+
+
+def vortex_profile_table(r_m, circulation_m2_s, radius_m: float) -> np.ndarray:
+    """Enclosed-circulation fractions B = Γ_enclosed / Γ_max (n_psi, PROFILE_POINTS) of every
+    azimuth row of the bound circulation (n_psi, n_r) (:func:`betz_enclosed_circulation`) on the
+    :func:`profile_radii` grid, s = PROFILE_SCALE_RADII · R (B = 1 at the last, infinite radius).
+    A row whose circulation is nowhere positive is a point vortex (B = 0 at ρ = 0, 1 beyond)."""
+    gamma = np.asarray(circulation_m2_s, dtype=float)
+    if gamma.ndim != 2 or gamma.shape[1] != np.size(r_m):
+        raise ValueError(f"vortex_profile_table: expected (n_psi, {np.size(r_m)}) circulation, got {gamma.shape}")
+    rho_grid = profile_radii(PROFILE_SCALE_RADII * radius_m)
+    out = np.ones((gamma.shape[0], PROFILE_POINTS))
+    out[:, 0] = 0.0
+    for i, row in enumerate(gamma):
+        rho, enclosed = betz_enclosed_circulation(r_m, row, radius_m)
+        if enclosed[-1] > 0.0:
+            out[i] = np.interp(rho_grid, rho, enclosed / enclosed[-1], right=1.0)
+    return out
 
 
 def to_hub_frame(vectors_hp, rotation_sign: int) -> np.ndarray:

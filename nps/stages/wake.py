@@ -13,7 +13,7 @@ inputs: ``trim`` (trim.parquet), ``loads`` (directory of the loads stage). outpu
 node per snapshot over one blade passage, ``{rotor}_vtk/``, with the free wake ``interaction.parquet``), ``bvi`` (directory:
 ``{rotor}.parquet``, BVI disk table with the loads' columns). params: ``rotors`` (rotor name →
 validated rotor configuration), ``wake`` (config ``wake`` section: model, A, B, C, D,
-core_radius_chords, core_growth, optional free), ``revolutions`` (wake age kept), ``steps_per_rev`` (vortex segments per revolution),
+core_radius_chords, core_growth, vortex_structure, optional free), ``revolutions`` (wake age kept), ``steps_per_rev`` (vortex segments per revolution),
 ``aircraft``, ``segment``; optional ``step_deg`` (snapshot spacing, default 5°), ``unsteady``
 (Sears response, default true), ``allow_outside_validity`` (campaign switch, default false).
 

@@ -1,6 +1,7 @@
 """Unit tests of nps.wake: Biot–Savart segment kernel, Beddoes geometry, frames."""
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -144,7 +145,7 @@ def test_hover_induced_velocity_is_axisymmetric_downwash():
     s = _state(mu_x=0.0, mu_z=0.0, beta_table_rad=np.zeros(72))
     psi = 2 * np.pi * np.arange(36) / 36
     r = np.linspace(0.5, 1.8, 14)
-    v = wake.disk_induced_velocity(s, wake.WakeModel(revolutions=4, steps_per_rev=180), psi, r, 0.0)
+    v = wake.disk_induced_velocity(s, wake.WakeModel(revolutions=4, steps_per_rev=180, vortex_structure="point"), psi, r, 0.0)
     assert np.all(v[:, :-1, 2] < 0.0)
     spread = np.ptp(v[..., 2], axis=0)
     assert np.all(spread < 1e-6 * np.abs(v[..., 2]).mean())
@@ -154,7 +155,7 @@ def test_disk_kernel_equals_generic_segment_kernel():
     """The disk kernel (node-vector reuse, per-row snapshot) equals the generic segment
     kernel applied to the snapshot's segments (rel. 1e-12)."""
     s = _state(gamma_table_m2_s=1.0 + np.sin(2 * np.pi * np.arange(72) / 72) ** 2)
-    model = wake.WakeModel(revolutions=1.5, steps_per_rev=72, core_growth=True)
+    model = wake.WakeModel(revolutions=1.5, steps_per_rev=72, core_growth=True, vortex_structure="point")
     psi = np.array([0.0, 1.0, 2.5])
     r = np.array([0.8, 1.5, 1.95])
     v = wake.disk_induced_velocity(s, model, psi, r, 0.04)
@@ -191,7 +192,7 @@ def test_clockwise_rotor_is_the_mirror_of_the_counterclockwise_rotor():
     the same ΔU_T and the same vertical velocity as the ccw disk kernel (rel. 1e-10)."""
     ccw = _state(mu_y=-0.03, rotation_sign=1)
     cw = _state(mu_y=0.03, rotation_sign=-1)
-    model = wake.WakeModel(revolutions=1.0, steps_per_rev=72)
+    model = wake.WakeModel(revolutions=1.0, steps_per_rev=72, vortex_structure="point")
     psi = np.array([0.4, 2.0])
     r = np.array([1.0, 1.9])
     v_ccw = wake.disk_induced_velocity(ccw, model, psi, r, 0.0)
@@ -218,3 +219,86 @@ def test_bad_inputs_are_rejected():
         wake.WakeModel(d_contraction=1.5)
     with pytest.raises(ValueError, match="shapes"):
         wake.segment_induced_velocity(np.zeros((2, 3)), np.zeros((2, 3)), np.zeros((3, 3)), 1.0, 0.1)
+
+
+def test_betz_roll_up_of_elliptic_loading_is_analytic():
+    """Betz roll-up of an elliptic sheet Γ = Γ0 √(1 − (r/R)²) (peak at r = 0): with r = R cos θ,
+    the vorticity outboard of r lies within ρ = R (θ/2 − sin 2θ / 4) / sin θ and encloses
+    Γ0 sin θ (∫_r^R Γ dr = Γ0 R (θ/2 − sin 2θ/4)). Numerical (2000 stations) within 0.5 % of Γ0
+    at every ρ."""
+    radius, gamma0 = 2.0, 3.0
+    r = np.linspace(0.0, radius, 2001)[:-1]
+    rho, enclosed = wake.betz_enclosed_circulation(r, gamma0 * np.sqrt(1.0 - (r / radius) ** 2), radius)
+    theta = np.linspace(0.05, np.pi / 2, 200)
+    rho_exact = radius * (theta / 2 - np.sin(2 * theta) / 4) / np.sin(theta)
+    assert np.allclose(np.interp(rho_exact, rho, enclosed), gamma0 * np.sin(theta), atol=5e-3 * gamma0)
+    assert enclosed[-1] == pytest.approx(gamma0) and rho[-1] == pytest.approx(radius * np.pi / 4, rel=1e-3)
+
+
+def _linear_sheet_state(**kw):
+    """Γ falling linearly from 4 m²/s at 0.5 R to 0 at the tip at ψ = 90° (a sheet half a radius
+    wide, as HART-II's advancing side), tip-loaded (peak at 0.98 R) at ψ = 270°, blended
+    smoothly in between."""
+    radius = 2.0
+    r = np.linspace(0.3, 1.96, 40)
+    wide = np.where(r < 1.0, 4.0, 4.0 * (radius - r) / (radius - 1.0))
+    narrow = 4.0 * np.minimum(r / 1.96, 1.0)
+    weight = 0.5 * (1.0 + np.sin(2 * np.pi * np.arange(360) / 360))[:, None]
+    gamma = weight * wide + (1.0 - weight) * narrow
+    return _state(gamma_table_m2_s=gamma.max(axis=1), beta_table_rad=np.full(360, 0.04),
+                  vortex_profile=wake.vortex_profile_table(r, gamma, radius), **kw)
+
+
+def test_betz_structure_equals_its_vortex_layers():
+    """The structure factor equals the explicit sum it stands for: every annulus of the Betz
+    distribution a point vortex of circulation ΔΓ and Vatistas core max(ρ, r_c) on the same
+    path (40 geometric layers). Disk velocities agree within 2 % of the point-vortex peak
+    (measured 0.9 %: the 129-point table). The
+    wide sheet's vortex (ψ = 90°) is diffuse (< 30 % of Γ_v within 10 cm of its centre), the
+    tip-loaded one (ψ = 270°) concentrated (> 95 %)."""
+    s = _linear_sheet_state(mu_x=0.15, mu_z=-0.011)
+    model = wake.WakeModel(revolutions=1.5, steps_per_rev=72)
+    point = wake.WakeModel(revolutions=1.5, steps_per_rev=72, vortex_structure="point")
+    psi = 2 * np.pi * np.arange(72) / 72
+    r = np.linspace(1.0, 1.95, 8)
+    v = wake.disk_induced_velocity(s, model, psi, r, 0.04)
+    v_point = wake.disk_induced_velocity(s, point, psi, r, 0.04)
+    rho = wake.profile_radii(wake.PROFILE_SCALE_RADII * s.radius_m)
+    edges = 0.002 * 1.2 ** np.arange(40)
+    enclosed = np.array([np.interp(edges, rho[:-1], row[:-1], right=1.0) for row in s.vortex_profile])
+    layers = np.diff(np.concatenate([np.zeros((360, 1)), enclosed], axis=1), axis=1) * s.gamma_table_m2_s[:, None]
+    layer_radius = 0.5 * (np.concatenate([[0.0], edges[:-1]]) + edges)
+    v_layers = sum(
+        wake.disk_induced_velocity(replace(s, gamma_table_m2_s=layers[:, m]),
+                                   replace(point, core_radius_chords=max(layer_radius[m], 0.5 * s.chord_m) / s.chord_m),
+                                   psi, r, 0.04)
+        for m in range(edges.size))
+    peak = np.abs(v_point).max()
+    assert np.abs(v - v_layers).max() < 0.02 * peak
+    fraction_within_10_cm = [np.interp(0.1, rho[:-1], s.vortex_profile[i, :-1]) for i in (90, 270)]
+    assert fraction_within_10_cm[0] < 0.3 and fraction_within_10_cm[1] > 0.95, fraction_within_10_cm
+
+
+def test_betz_structure_needs_the_profile():
+    """vortex_structure 'betz' without the loads' profile is refused with a message; a profile
+    of the wrong shape is refused when the state is built."""
+    with pytest.raises(ValueError, match="vortex_profile"):
+        wake.disk_induced_velocity(_state(), wake.WakeModel(), np.zeros(1), np.ones(1), 0.0)
+    with pytest.raises(ValueError, match="vortex_profile"):
+        _state(vortex_profile=np.ones((72, 5)))
+    with pytest.raises(ValueError, match="vortex_structure"):
+        wake.WakeModel(vortex_structure="lamb")
+
+
+def test_structure_factor_polynomial_fits_its_table():
+    """The kernel's polynomial T(u) reproduces the structure-factor table within 1e-3 for a wide
+    sheet, a tip-loaded one and every blend (T between 0 and 1, T = 1 at u = 1)."""
+    s = _linear_sheet_state()
+    scale = wake.PROFILE_SCALE_RADII * s.radius_m
+    table = wake.structure_factor_table(s.vortex_profile, scale, 0.5 * s.chord_m)
+    coefficients, s2 = wake.vortex_profiles(s, wake.WakeModel())
+    x = np.linspace(-1.0, 1.0, table.shape[1])
+    fitted = np.array([np.polynomial.polynomial.polyval(x, c) for c in coefficients])
+    assert s2 == pytest.approx(scale**2)
+    assert np.abs(fitted - table).max() < 1e-3
+    assert np.all((table > 0.0) & (table <= 1.0 + 1e-12)) and np.allclose(table[:, -1], 1.0)

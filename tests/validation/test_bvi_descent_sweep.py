@@ -22,9 +22,13 @@ blade's ≥ 10/rev total normal-force rate,
 the sound power of the BVI band of a compact blade dipole radiating below the rotor. Parallel
 interactions (vortex along the span) load the whole blade at once and count fully; oblique
 ones (the level-flight advancing-side crossings) cancel along the span, as their noise does.
-Measured (relative to the maximum), γ = 0°: 0.06, 3°: 0.47, 4°: 0.77, 5°: 1.00, 6°: 0.94,
-7°: 0.66, 8°: 0.43, 10°: 0.13. Threshold for "small": ≤ 0.5 of the peak, i.e. at least 3 dB
-below it (the thesis describes 8° as resembling 2°–3°, here 0.43 vs 0.47 at 3°).
+Measured (relative to the maximum; Betz vortex structure, the default), γ = 0°: 0.06, 3°: 0.41,
+4°: 0.66, 5°: 0.90, 6°: 1.00, 7°: 0.95, 8°: 0.78, 10°: 0.28; the maximum intensity is 4.3 dB
+below the point vortex's. With the thesis' point vortex: 0.06, 0.47, 0.77, 1.00, 0.94, 0.66,
+0.43, 0.13. Threshold for "small": ≤ 0.5 of the peak, i.e. at least 3 dB below it. The thesis
+describes 8° as resembling 2°–3° (point vortex: 0.43 against 0.47 at 3°); with the Betz
+structure the fall beyond the peak is slower (8°: −1.1 dB): the diffuse vortices of the wide
+sheets lose less of their induced velocity as the miss distance grows, so only 10° is "small".
 
 Earlier measure (max |∂F_z/∂ψ| at any station, disk parallel to the path): 0.61 in level flight
 and 0.66 at 8°; with the trim-consistent tilt it peaks at 8° because single-station maxima come
@@ -101,16 +105,16 @@ def test_bvi_intensity_peaks_between_5_and_7_degrees(sweep):
     assert 5 <= peak <= 7, rel
 
 
-def test_bvi_intensity_small_in_level_flight_and_beyond_8_degrees(sweep):
-    """Level flight, 8° and 10° at most half the peak intensity (≥ 3 dB below; module doc);
-    level flight, where the wake passes below the disk, under a tenth (measured 0.06)."""
+def test_bvi_intensity_small_in_level_flight_and_at_10_degrees(sweep):
+    """Level flight and 10° at most half the peak intensity (≥ 3 dB below; module doc); level
+    flight, where the wake passes below the disk, under a tenth (measured 0.06)."""
     rel, _ = sweep
-    assert rel[0] <= 0.1 and rel[8] <= 0.5 and rel[10] <= 0.5, rel
+    assert rel[0] <= 0.1 and rel[10] <= 0.5, rel
 
 
 def test_bvi_intensity_rises_from_level_flight_to_the_peak(sweep):
-    """The intensity grows monotonically from level flight to 5° (0.06, 0.47, 0.77, 1.00) and
-    falls monotonically from 6° to 10°: one interaction regime, not scattered events."""
+    """The intensity grows monotonically from level flight to 6° (0.06, 0.41, 0.66, 0.90, 1.00)
+    and falls monotonically from 6° to 10°: one interaction regime, not scattered events."""
     rel, _ = sweep
-    assert rel[0] < rel[3] < rel[4] < rel[5], rel
+    assert rel[0] < rel[3] < rel[4] < rel[5] < rel[6], rel
     assert rel[6] > rel[7] > rel[8] > rel[10], rel

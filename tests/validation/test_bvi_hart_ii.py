@@ -5,15 +5,17 @@ tests/validation/hart_ii_case.py. Model defaults (A, B, C, D = 0.5, 1, 1.1, 0.85
 Sears response; 0/1-rev harmonics removed). Figures are written to $NPS_FIGURES_DIR when set
 (the copies in docs/figures/ were made that way).
 
-Measured at the time of writing (docs/models/wake_bvi.md), Sears response with the local
-in-plane speed and compressible magnitude:
-- advancing window 30°–80°: high-passed (≥ 10/rev) peak-to-peak 0.045 vs measured 0.022
-  (×2.1; constant-speed Sears ×2.5, quasi-steady lifting line ×7.4); cross-correlation 0.87
-  at a lag of −9°, while each measured event has its model event within 2.2° (median +0.7°):
-  the lag is the wider model train shifted by one event spacing.
-- retreating window 280°–330°: 0.039 vs 0.035 (×1.09; constant-speed Sears ×1.3,
-  quasi-steady ×3.3); correlation 0.77 at +7°.
-- PIV: mean miss distance 0.148 m (1.2 c), predicted vortices 0.094 m too low on average.
+Measured at the time of writing (docs/models/wake_bvi.md), Betz vortex structure (the default)
+and Sears response with the local in-plane speed and compressible magnitude; the thesis' point
+vortex in brackets:
+- advancing window 30°–80°: high-passed (≥ 10/rev) peak-to-peak 0.0222 vs measured 0.0217
+  (×1.02 [×2.09]; quasi-steady lifting line ×3.6 [×7.4]); cross-correlation 0.85 at a lag of
+  −9°, while each measured event has its model event within 2.2° (median +0.7°): the lag is the
+  wider model train shifted by one event spacing.
+- retreating window 280°–330°: 0.0362 vs 0.0354 (×1.02 [×1.09]; quasi-steady ×3.1 [×3.3]);
+  correlation 0.79 at +7°.
+- PIV: mean miss distance 0.148 m (1.2 c), predicted vortices 0.094 m too low on average (the
+  vortex structure does not move the wake).
 """
 
 import os
@@ -56,14 +58,23 @@ def test_bvi_events_in_measured_windows(hart):
 
 def test_bvi_phase_and_amplitude(hart, hart_quasi_steady):
     """Phase: the high-passed model and measurement correlate with ρ ≥ 0.7 at a lag within
-    ±10° in both windows. Amplitude: peak-to-peak within a factor 2.5 of the measured one in
-    both windows with the unsteady response (measured ×2.1 and ×1.09), and closer to it than
-    the quasi-steady lifting line (the thesis model, which matched event locations only)."""
+    ±10° in both windows. Amplitude: peak-to-peak within 30 % of the measured one in both
+    windows (measured ×1.02 and ×1.02), and closer to it than the quasi-steady lifting line."""
     quasi_steady = h.window_comparison(hart_quasi_steady.psi_deg, hart_quasi_steady.cn_bvi)
     for (lo, hi, lag, rho, p2p_model, p2p_meas), qs in zip(h.window_comparison(hart.psi_deg, hart.cn_bvi), quasi_steady):
         assert abs(lag) <= 10.0 and rho >= 0.7, (lo, hi, lag, rho)
-        assert p2p_meas / 2.5 <= p2p_model <= 2.5 * p2p_meas, (lo, hi, p2p_model, p2p_meas)
+        assert abs(p2p_model / p2p_meas - 1.0) < 0.30, (lo, hi, p2p_model, p2p_meas)
         assert abs(np.log(p2p_model / p2p_meas)) < abs(np.log(qs[4] / p2p_meas))
+
+
+def test_point_vortex_doubles_the_advancing_bvi():
+    """The Betz structure is what brings the advancing amplitude down: with the thesis' point
+    vortex (same wake, same response) it is ×2.09 the measured one, the retreating ×1.09 — the
+    advancing-side vortices roll up from a sheet half a radius wide (diffuse), the retreating
+    ones from a tip-loaded sheet (concentrated)."""
+    point = h.run(model=wake.WakeModel(steps_per_rev=360, vortex_structure="point"))
+    (_, _, _, _, adv, adv_meas), (_, _, _, _, ret, ret_meas) = h.window_comparison(point.psi_deg, point.cn_bvi)
+    assert adv > 1.8 * adv_meas and abs(ret / ret_meas - 1.0) < 0.15, (adv / adv_meas, ret / ret_meas)
 
 
 def test_advancing_bvi_event_timing(hart):

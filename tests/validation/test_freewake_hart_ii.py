@@ -3,22 +3,20 @@ and the PIV tip-vortex positions (tests/data/hart_ii). Case: tests/validation/ha
 with the measured blade motion (elastic twist and flap with the 2.5° precone, ``CASES["BL"]``),
 360 × 50 disk, 1° load segments, 10° relaxation grid (``FreeWakeModel`` defaults).
 
-Measured at the time of writing (docs/models/wake_bvi.md, "Validation"; rigid-flap model in
-brackets):
-- advancing window 30°–80°: high-passed peak-to-peak 0.0439 vs measured 0.0217 (×2.02 [×1.96]),
-  best-correlation lag +8.9° (ρ = 0.86) [+9.1°];
-- retreating window 280°–330°: 0.0393 vs 0.0354 (×1.11 [×1.06]), lag −4.1° (ρ = 0.76) [−3.9°];
-- PIV miss distance mean 0.142 m [0.144 m] (wake as the loads see it, 4 revolutions); vortices
-  0.066 m too low on average [0.073 m], retreating side 0.035 m [0.057 m], advancing side
-  0.082 m [0.082 m].
+Measured at the time of writing (docs/models/wake_bvi.md, "Validation"), Betz vortex structure
+(the default; point vortex in brackets):
+- advancing window 30°–80°: high-passed peak-to-peak 0.0201 vs measured 0.0217 (×0.92 [×2.02]),
+  best-correlation lag +9.1° (ρ = 0.83) [+8.9°];
+- retreating window 280°–330°: 0.0327 vs 0.0354 (×0.92 [×1.11]), lag −3.9° (ρ = 0.79) [−4.1°];
 - event timing (each measured peak/trough against the nearest model one of the same kind):
   advancing −2.2° … −0.4° (median −0.7°), retreating median −4.2°; the advancing lag above is
-  the model's wider event train, shifted by one event spacing (docs).
-Issue targets met: retreating amplitude within 30 %, phase within 5° on both sides by event
-timing (the advancing best-correlation lag, +8.9°, is not). Not met: advancing amplitude
-(×2.02), PIV miss < 0.05 m (0.142 m; causes in the docs).
-The tests assert the measured state with margins, that the measured flap lifts the
-retreating-side vortices toward the PIV positions, and the convergence in the relaxation step.
+  the model's wider event train, shifted by one event spacing (docs);
+- PIV miss distance mean 0.142 m (wake as the loads see it, 4 revolutions; the vortex structure
+  does not move the wake); vortices 0.066 m too low on average, retreating side 0.035 m,
+  advancing side 0.082 m.
+Issue targets met: both amplitudes within 30 %, phase within 5° on both sides by event timing
+(the advancing best-correlation lag, +9.1°, is not). Not met: PIV miss < 0.05 m (0.142 m;
+causes in the docs).
 """
 
 import os
@@ -49,12 +47,12 @@ def test_converged(free):
 
 
 def test_bvi_amplitude_and_phase(free):
-    """Retreating window: peak-to-peak within 30 % and lag within 5° (issue targets, met).
-    Advancing window: ρ ≥ 0.8 at a lag within 10°, peak-to-peak within ×2.3 (target ±30 % not met)."""
-    (_, _, lag_a, rho_a, p2p_a, meas_a), (_, _, lag_r, rho_r, p2p_r, meas_r) = h.window_comparison(free.psi_deg, free.cn_bvi)
-    assert abs(p2p_r / meas_r - 1.0) < 0.30 and abs(lag_r) <= 5.0 and rho_r >= 0.7, (p2p_r, meas_r, lag_r, rho_r)
-    assert abs(lag_a) <= 10.0 and rho_a >= 0.8, (lag_a, rho_a)
-    assert meas_a <= p2p_a <= 2.3 * meas_a, (p2p_a, meas_a)
+    """Both windows: peak-to-peak within 30 % of the measured one (issue target; measured ×0.92
+    and ×0.92); correlation ρ ≥ 0.7 at a lag within 10° (the phase target is checked event by
+    event below)."""
+    for lo, hi, lag, rho, p2p, meas in h.window_comparison(free.psi_deg, free.cn_bvi):
+        assert abs(p2p / meas - 1.0) < 0.30, (lo, hi, p2p, meas)
+        assert abs(lag) <= 10.0 and rho >= 0.7, (lo, hi, lag, rho)
 
 
 def test_bvi_event_timing(free):

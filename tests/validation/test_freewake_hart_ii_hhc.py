@@ -1,18 +1,23 @@
 """HART-II with higher-harmonic control: BL → MN (θ3 = 0.8° at ψ3 = 300°) and MV (ψ3 = 180°),
 each with its measured elastic twist, measured flap (2.5° precone) and trim targets
-(hart_ii_case.CASES), free wake, against the measured M²C_n at r/R = 0.87 (tests/data/hart_ii).
+(hart_ii_case.CASES), free wake with the Betz vortex structure (defaults), against the measured
+M²C_n at r/R = 0.87 (tests/data/hart_ii).
 
-Advancing-side (30°–80°) high-passed peak-to-peak, measured at the time of writing
-(docs/models/wake_bvi.md, "Validation"; ratio to BL in brackets):
+High-passed peak-to-peak, measured at the time of writing (docs/models/wake_bvi.md,
+"Validation"; advancing ratio to BL in brackets):
 
-| case | measured | free wake, measured flap | free wake, rigid flap |
-| BL   | 0.0217          | 0.0439          | 0.0426          |
-| MN   | 0.0599 (×2.76)  | 0.0448 (×1.02)  | 0.0491 (×1.15)  |
-| MV   | 0.0308 (×1.42)  | 0.0476 (×1.08)  | 0.0378 (×0.89)  |
+| case | window | measured | measured flap | rigid flap | point vortex, measured flap |
+| BL | 30°–80° | 0.0217 | 0.0201 | 0.0186 | 0.0439 |
+| MN | 30°–80° | 0.0599 (×2.76) | 0.0283 (×1.41) | 0.0359 (×1.93) | 0.0448 (×1.02) |
+| MV | 30°–80° | 0.0308 (×1.42) | 0.0386 (×1.92) | 0.0326 (×1.76) | 0.0476 (×1.08) |
+| BL | 280°–330° | 0.0354 | 0.0327 | 0.0332 | 0.0393 |
+| MN | 280°–330° | 0.0429 | 0.0415 | 0.0393 | 0.0434 |
+| MV | 280°–330° | 0.0400 | 0.0468 | 0.0505 | 0.0510 |
 
-With the measured blade motion NPS predicts the measured direction of change from BL to MN
-and to MV (issue target); with the rigid-flap model the MV direction is wrong (the measured
-MV flap raises the advancing-side BVI). The magnitudes of the changes are far too small.
+NPS predicts the measured direction of change from BL to MN and to MV (issue target) with either
+blade motion, by 40–90 % (the point vortex: 2–8 %, within the grid sensitivity). Within 30 % of
+the measurement: BL and MV on the advancing side, all three on the retreating side; MN's
+advancing amplitude is half the measured one.
 """
 
 import os
@@ -33,7 +38,7 @@ def cases():
 
 @pytest.fixture(scope="module")
 def rigid_flap():
-    return {name: h.run_free(case=h.CASES[name], measured_flap=False) for name in ("BL", "MV")}
+    return {name: h.run_free(case=h.CASES[name], measured_flap=False) for name in NAMES}
 
 
 def _p2p(psi_deg, cn, window=0):
@@ -48,11 +53,19 @@ def test_direction_of_change_bl_to_mn_and_mv(cases):
     assert model["MN"] > model["BL"] and model["MV"] > model["BL"], model
 
 
-def test_measured_flap_sets_the_mv_direction(cases, rigid_flap):
-    """The rigid-flap model predicts a decrease BL → MV (wrong); the measured flap an increase."""
-    rigid = {name: _p2p(r.psi_deg, r.cn_bvi) for name, r in rigid_flap.items()}
-    assert rigid["MV"] < rigid["BL"]
-    assert _p2p(cases["MV"].psi_deg, cases["MV"].cn_bvi) > _p2p(cases["BL"].psi_deg, cases["BL"].cn_bvi)
+def test_changes_are_resolved_and_levels_measured(cases, rigid_flap):
+    """BL → MN and BL → MV rise by more than 25 % with the measured and with the rigid flap (the
+    grid sensitivity is < 5 %); BL and MV advancing and all retreating peak-to-peaks within 30 %
+    of the measured ones (MN advancing: ×0.47, not asserted)."""
+    for runs in (cases, rigid_flap):
+        model = {name: _p2p(r.psi_deg, r.cn_bvi) for name, r in runs.items()}
+        assert model["MN"] > 1.25 * model["BL"] and model["MV"] > 1.25 * model["BL"], model
+    for name in NAMES:
+        measured, predicted = _p2p(*h.measured_cn(name), 1), _p2p(cases[name].psi_deg, cases[name].cn_bvi, 1)
+        assert abs(predicted / measured - 1.0) < 0.30, (name, predicted, measured)
+    for name in ("BL", "MV"):
+        measured, predicted = _p2p(*h.measured_cn(name)), _p2p(cases[name].psi_deg, cases[name].cn_bvi)
+        assert abs(predicted / measured - 1.0) < 0.30, (name, predicted, measured)
 
 
 def test_write_figure(cases, rigid_flap, tmp_path):

@@ -5,9 +5,10 @@ C_T = 0.0095) trimmed by nps.bet on 360 × 50 and 720 × 50 disks; BVI increment
 model defaults and the wake segment equal to the disk step (1° vs 0.5°, 4 revolutions).
 
 Criteria (issue): the peak |ΔU_P| on the disk changes by < 5 % and no interaction band moves
-by more than one coarse step. Measured at the time of writing: peak 11.445 vs 11.488 m/s
-(0.4 % relative; local-U_T compressible Sears response), all band crests within 1°, coarse
-vs fine at the common stations differ by at most 0.06 % of the peak.
+by more than one coarse step. Measured at the time of writing (Betz vortex structure, local-U_T
+compressible Sears response): peak 10.959 vs 11.002 m/s (0.4 % relative), all band crests
+within 1°, coarse vs fine at the common stations differ by at most 0.12 % of the peak (point
+vortex: 11.445 vs 11.488 m/s, 0.06 %).
 """
 
 import numpy as np
@@ -56,7 +57,9 @@ def test_interaction_bands_do_not_move(fields):
     """Every crest (|ΔU_P| local maximum with prominence ≥ 20 % of the disk peak) of each
     radial station on the coarse grid has a crest (prominence ≥ 10 %, a hysteresis so that
     a crest just at the threshold is not counted as moved) on the fine grid within one coarse
-    step (1°), and vice versa."""
+    step (1°), and vice versa. Prominence is local (bases searched within ±10°): with the
+    diffuse vortices of the Betz structure two neighbouring crests can be equally high, and
+    a global base search would then flip a crest's prominence on a 0.01 m/s difference."""
     coarse, fine = fields
     peak = np.abs(fine).max()
     step_deg = 1.0
@@ -64,7 +67,7 @@ def test_interaction_bands_do_not_move(fields):
     def crests(field, j, prominence):
         n = field.shape[0]
         signal = np.abs(np.concatenate([field[:, j], field[:, j], field[:, j]]))
-        idx, _ = find_peaks(signal, prominence=prominence)
+        idx, _ = find_peaks(signal, prominence=prominence, wlen=n // 18 + 1)
         return (idx[(idx >= n) & (idx < 2 * n)] - n) * 360.0 / n
 
     for j in range(coarse.shape[1]):
