@@ -11,9 +11,9 @@ Synthetic aircraft of identical rotors (tests/validation/multirotor_case.py), 72
   11.0 m/s (0.125 R: 1.25; 0.25 R: 1.18); interference at the momentum level (C_T/C_T,Γ = 0.77);
 - (d) tandem of the thesis' proof of concept (two equal rotors in one plane, rotor 2 behind
   rotor 1, 6° descent at μ = 0.23): rotor 1's wake gives rotor 2 a mean inflow of 6.5 m/s
-  (thrust −31 % before the re-trim) and 68 % of its ≥ 2/rev BVI increment (RMS 7.4 m/s, peak
-  28.3 m/s against 15.1 m/s from its own wake); rotor 2 gives rotor 1 −0.17 m/s (upwash) and
-  1.5 % of its BVI increment.
+  (thrust −31 % before the re-trim) and 69 % of its ≥ 2/rev BVI increment (RMS 7.1 m/s, peak
+  28.1 m/s against 14.0 m/s from its own wake; Betz vortex structure); rotor 2 gives rotor 1
+  −0.17 m/s (upwash) and 1.5 % of its BVI increment.
 Frames: turning the whole aircraft by one rotation changes nothing (< 1e-9); the far-field
 grouping of other rotors' wakes in the blade-load evaluation stays within 0.26 % of the peak.
 Coaxial and tandem tests are marked slow (≈ 15–25 s each on the shared machine).
