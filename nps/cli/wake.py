@@ -28,6 +28,8 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--core-radius-chords", type=float, default=default("wake.core_radius_chords"), help="r_c / c")
     ap.add_argument("--core-growth", action="store_true", default=default("wake.core_growth"),
                     help="Squire core growth with wake age")
+    ap.add_argument("--vortex-structure", choices=("betz", "point"), default=default("wake.vortex_structure"),
+                    help="betz (circulation spread as Betz's roll-up of the trailed sheet) or point (thesis)")
     ap.add_argument("--revolutions", type=float, default=default("resolution.wake_revolutions"), help="wake age kept")
     ap.add_argument("--steps-per-rev", type=int, default=default("resolution.n_psi"), help="vortex segments per revolution")
     ap.add_argument("--step-deg", type=float, default=5.0, help="wake snapshot spacing over one blade passage (deg)")
@@ -48,7 +50,7 @@ def main(argv: list[str]) -> int:
     except ConfigError as error:
         return fail(str(error))
     wake = {"model": args.model, "A": args.A, "B": args.B, "C": args.C, "D": args.D, "core_radius_chords": args.core_radius_chords,
-            "core_growth": args.core_growth}
+            "core_growth": args.core_growth, "vortex_structure": args.vortex_structure}
     params = {"rotors": rotors, "wake": wake, "revolutions": args.revolutions, "steps_per_rev": args.steps_per_rev,
               "step_deg": args.step_deg, "unsteady": not args.quasi_steady, "aircraft": aircraft["name"],
               "segment": provenance(args.trim, "segment")}
