@@ -9,7 +9,7 @@ the largest share of the rotor's ≥ 2/rev BVI increment, the mean ΔU_P that th
 induce on it, and the thrust change they cause before the re-trim (nps.interaction).
 
 Without result directories it runs both campaigns first (benchmarks/bench_campaign.py --study-only,
-with and without --free-wake; about 3 + 4 min on the 2-core machine) and prints their wall and CPU
+with and without --free-wake; about 3 + 5 min on the 2-core machine) and prints their wall and CPU
 times. ``--update docs/study.md`` rewrites the tables between the markers
 ``<!-- interaction tables -->`` and ``<!-- end interaction tables -->``.
 
