@@ -269,9 +269,9 @@ class _Sources:
     beta: np.ndarray  # (n_rot, n_tab)
     distortion: np.ndarray  # (n_rot, N, J+1, 3)
     core: np.ndarray  # (n_rot, 3): r_c0, growth coefficient, a1/ν
-    profiles: np.ndarray  # (n_rot, n_rows, M) enclosed-circulation tables (wake.vortex_profiles), zero-padded
-    profile_rows: np.ndarray  # (n_rot,) int: each rotor's table length
-    profile_s2: np.ndarray  # (n_rot,) table scale s² (m²)
+    profiles: np.ndarray  # (n_rot, n_rows, M) structure-factor coefficients (wake.vortex_profiles), zero-padded
+    profile_rows: np.ndarray  # (n_rot,) int: each rotor's number of release azimuths in it
+    profile_s2: np.ndarray  # (n_rot,) scale s² of the structure factor (m²)
 
 
 def _common_tables(rotors: Sequence[RotorPlacement]) -> tuple[np.ndarray, np.ndarray]:
@@ -363,8 +363,8 @@ def _distortion_at(table, psi, phi, step):
 def _rotor_nodes(p, gamma_tab, beta_tab, table, table_step, core, psi0, n_age, dphi, n_rows, nodes, strength, radius,
                  row):
     """Nodes (B, n_age+1, 3) in the rotor's own H' when its blade 0 is at ``psi0``: Beddoes
-    geometry plus the interpolated distortion; Γ, core radius and enclosed-circulation table
-    row (of ``n_rows``, :func:`nps.wake.profile_row`) per node."""
+    geometry plus the interpolated distortion; Γ, core radius and structure-factor row (of
+    ``n_rows``, :func:`nps.wake.profile_row`) per node."""
     n_blades = int(p[1])
     for k in range(n_blades):
         psi_k = psi0 + 2.0 * math.pi * k / n_blades
@@ -435,7 +435,7 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
     r_c0), closing each tip vortex into a horseshoe. ``far[t, q]``: far-field grouping of
     source q's vortices (:func:`_far_groups`): a group of ``group`` segments farther than
     ``ratio`` times its half-extent from the point counts as its chord segment (with the
-    enclosed-circulation row of its first node). ``profiles`` (n_src, n_rows, M), ``profile_rows``
+    structure-factor row of its first node). ``profiles`` (n_src, n_rows, M), ``profile_rows``
     (n_src,), ``profile_s2`` (n_src,): the sources' vortex structure (:class:`_Sources`); bound
     vortices are point vortices."""
     n_src = params.shape[0]
