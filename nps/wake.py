@@ -548,27 +548,39 @@ def disk_induced_velocity(state: WakeState, model: WakeModel, psi_rad, r_m, beta
 def vortex_profiles(state: WakeState, model: WakeModel) -> tuple[np.ndarray, float]:
     """(structure-factor coefficients (n_rows, STRUCTURE_DEGREE + 1), scale s² in m²) of the
     model's vortex structure: the state's Betz roll-up with the model's core r_c0 for ``"betz"``
-    (:func:`structure_factor_table`, :func:`structure_factor_coefficients`), the one-coefficient
-    point vortex for ``"point"``."""
+    (:func:`structure_factor_coefficients`), the one-coefficient point vortex for ``"point"``."""
     if model.vortex_structure == "point":
         return POINT_VORTEX_PROFILE, 1.0
     if state.vortex_profile is None:
         raise ValueError("WakeModel(vortex_structure='betz') needs WakeState.vortex_profile (the loads' "
                          "circulation through nps.wake.vortex_profile_table; nps.bvi.wake_state builds it)")
     scale = PROFILE_SCALE_RADII * state.radius_m
-    table = structure_factor_table(state.vortex_profile, scale, model.core_radius_chords * state.chord_m,
-                                   model.vatistas_n)
-    return structure_factor_coefficients(table), scale * scale
+    coefficients = structure_factor_coefficients(state.vortex_profile, scale, model.core_radius_chords * state.chord_m,
+                                                 model.vatistas_n)
+    return coefficients, scale * scale
 
 
-def structure_factor_coefficients(table) -> np.ndarray:
-    """Power-basis coefficients (n_rows, STRUCTURE_DEGREE + 1) in x = 2u − 1 of the least-squares
-    Chebyshev fit of each row of a structure-factor table on u_m = m / (M − 1) (fit error
-    ≤ 4e-4 on HART-II's rows, tests/unit/test_wake.py)."""
-    t = np.asarray(table, dtype=float)
-    x = np.linspace(-1.0, 1.0, t.shape[1])
-    cheb = np.polynomial.chebyshev.chebfit(x, t.T, STRUCTURE_DEGREE)  # (degree + 1, n_rows)
-    return np.ascontiguousarray([np.polynomial.chebyshev.cheb2poly(c) for c in cheb.T], dtype=float)
+def structure_factor_coefficients(enclosed_fraction, scale_m: float, core_radius_m: float,
+                                  vatistas_n: float = 2.0) -> np.ndarray:
+    """Power-basis coefficients (n_rows, STRUCTURE_DEGREE + 1) in x = 2u − 1 of the structure
+    factor of each row of enclosed-circulation fractions (:func:`structure_factor_table`): the
+    Chebyshev interpolant through the Gauss–Lobatto points x_k = cos(πk/D), D = STRUCTURE_DEGREE
+    (discrete cosine transform), converted to powers of x. Elementwise sums only (no BLAS or LAPACK),
+    so that the coefficients, and the loads, are bit-identical on every CPU."""
+    degree = STRUCTURE_DEGREE
+    k = np.arange(degree + 1)
+    u = 0.5 * (np.cos(np.pi * k / degree) + 1.0)
+    with np.errstate(divide="ignore"):
+        radii = scale_m * np.sqrt(u / (1.0 - u))
+    values = structure_factor_table(enclosed_fraction, scale_m, core_radius_m, vatistas_n, radii)
+    end_halved = np.where((k == 0) | (k == degree), 0.5, 1.0)
+    cosines = np.cos(np.pi * np.outer(k, k) / degree) * end_halved[None, :]
+    chebyshev = (2.0 / degree) * (values[:, None, :] * cosines[None, :, :]).sum(axis=-1) * end_halved[None, :]
+    to_powers = np.zeros((degree + 1, degree + 1))  # row j: T_j(x) in powers of x (integers)
+    for j in range(degree + 1):
+        powers = np.polynomial.chebyshev.cheb2poly(np.eye(degree + 1)[j])
+        to_powers[j, : powers.size] = powers
+    return np.ascontiguousarray((chebyshev[:, :, None] * to_powers[None, :, :]).sum(axis=1))
 
 
 def profile_radii(scale_m: float) -> np.ndarray:
@@ -578,19 +590,22 @@ def profile_radii(scale_m: float) -> np.ndarray:
         return scale_m * np.sqrt(u / (1.0 - u))
 
 
-def structure_factor_table(enclosed_fraction, scale_m: float, core_radius_m: float, vatistas_n: float = 2.0) -> np.ndarray:
-    """Structure factor T (n_rows, M) of enclosed-circulation fractions B (n_rows, M) on the
-    :func:`profile_radii` grid (module doc): the increment of B between two grid radii counts at
-    their mean radius (the last, infinite interval carries no circulation once B = 1)."""
+def structure_factor_table(enclosed_fraction, scale_m: float, core_radius_m: float, vatistas_n: float = 2.0,
+                           radii_m=None) -> np.ndarray:
+    """Structure factor T (n_rows, n_radii) of enclosed-circulation fractions B (n_rows, M) on the
+    :func:`profile_radii` grid (module doc), at ``radii_m`` (default: that grid; +inf gives 1): the
+    increment of B between two grid radii counts at their mean radius (the last, infinite interval
+    carries no circulation once B = 1). Elementwise sums (bit-identical on every CPU)."""
     b = np.asarray(enclosed_fraction, dtype=float)
     rho = profile_radii(scale_m)
-    r = rho[:-1]
-    mid = 0.5 * (rho[1:-1] + rho[:-2])
+    r = rho if radii_m is None else np.asarray(radii_m, dtype=float)
+    finite = np.isfinite(r)
+    mid = np.maximum(0.5 * (rho[1:-1] + rho[:-2]), core_radius_m)
     two_n = 2.0 * vatistas_n
-    point = (core_radius_m**two_n + r[:, None] ** two_n) ** (1.0 / vatistas_n)
-    weights = point / (np.maximum(mid, core_radius_m)[None, :] ** two_n + r[:, None] ** two_n) ** (1.0 / vatistas_n)
-    table = np.ones_like(b)
-    table[:, :-1] = b[:, :1] + np.diff(b[:, :-1], axis=1) @ weights.T
+    rf = r[finite][:, None]
+    weights = (core_radius_m**two_n + rf**two_n) ** (1.0 / vatistas_n) / (mid[None, :] ** two_n + rf**two_n) ** (1.0 / vatistas_n)
+    table = np.ones((b.shape[0], r.size))
+    table[:, finite] = b[:, :1] + (np.diff(b[:, :-1], axis=1)[:, None, :] * weights[None, :, :]).sum(axis=-1)
     return np.ascontiguousarray(table)
 
 
