@@ -342,7 +342,7 @@ def _polyline_points(px, py, pz, nodes, strength, core, profiles, row, s2, k, j_
     Segment-outer, point-inner (vectorises); each point sums segment by segment in order.
     r1x … n1 (n_pts,): scratch."""
     # literals let the compiler drop the structure factor (point vortex) and the general-n power law from the
-    # loop (a run-time flag is not unswitched: the point-vortex kernel then runs 2.5x slower, measured)
+    # loop (a run-time flag is not unswitched: the point-vortex kernel then runs about 2x slower, measured)
     if profiles.shape[1] == 1:
         _sweep_n(px, py, pz, nodes, strength, core, profiles, row, s2, k, j_start, j_end, g_sign, n, False,
                  r1x, r1y, r1z, n1, vx, vy, vz)
