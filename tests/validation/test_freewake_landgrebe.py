@@ -25,6 +25,11 @@ steady helix of tip vortices of strength Γ_v = max_r Γ cannot descend faster t
 self-induced velocity of the infinite vortex cylinder, √(C_T,Γ/2) = 0.058 per rad with
 C_T,Γ = B Γ̄/(2π Ω R²) = 0.0068 (11 % below Landgrebe's k2 even infinitely far below the disk);
 the model's far descent approaches that bound (test_far_descent_approaches_the_vortex_cylinder).
+A wake-coupled lifting line on Landgrebe's own tip-vortex geometry raises Γ̄ by 10 % (the hover
+tip peak), the bound only to 0.061; the pre-passage rise does not change when all strengths are
+scaled; free inboard trailers reduce it to +0.011, and coupled to a lifting line to +0.004: the
+downwash that holds the young vortex down comes from the narrow sheet trailed beside it, which
+needs cores thinner than the relaxation converges with (docs, "Landgrebe hover").
 """
 
 import numpy as np
