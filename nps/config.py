@@ -540,7 +540,8 @@ def load_rotor_test(path: str | Path) -> dict:
     from nps.rotor_test import microphone_positions, rotor_for_test
 
     path = Path(path)
-    schema = load_schema("rotor_test")
+    # the condition's blade-motion fields refer to the aircraft schema's rotor definitions
+    schema = {**load_schema("rotor_test"), "$defs": load_schema("aircraft")["$defs"]}
     data = _with_defaults(validate(read_yaml(path), schema, path), schema)
     if path.stem != data["name"]:
         _raise(path, [("name", f"expected the file stem '{path.stem}', got '{data['name']}'")])

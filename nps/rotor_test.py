@@ -42,6 +42,9 @@ from nps.trim import TRIM_COLUMNS, glauert_inflow
 # a rotor YAML may omit the fields that place a rotor on an aircraft
 _ROTOR_DEFAULTS = {"role": "lift", "hub_position_m": [0.0, 0.0, 0.0], "thrust_axis_body": [0.0, 0.0, 1.0]}
 MICROPHONE_COLUMNS = ("x_T_m", "y_T_m", "z_T_m", "group")
+# rotor fields a test condition may set (they replace the rotor file's)
+CONDITION_ROTOR_FIELDS = ("control", "pitch_deg", "flapping", "higher_harmonic_pitch", "elastic_twist_harmonics",
+                          "prescribed_flap")
 
 
 def t_to_g(p_t_m) -> np.ndarray:
@@ -62,9 +65,10 @@ def omega_of(condition: Mapping) -> float:
 
 def rotor_for_test(rotor: Mapping, condition: Mapping) -> dict:
     """The rotor configuration the stages use: ``rotor`` with the condition's speed and, where the
-    condition gives them, its control, pitch and flapping."""
+    condition gives them, its control, pitch, flapping and prescribed blade motion (higher-harmonic
+    pitch, elastic twist and flap harmonics of that condition, e.g. HART-II's MN and MV)."""
     out = {**_ROTOR_DEFAULTS, **rotor, "omega_rad_s": omega_of(condition)}
-    for key in ("control", "pitch_deg", "flapping"):
+    for key in CONDITION_ROTOR_FIELDS:
         if key in condition:
             out[key] = condition[key]
     if out.get("control", "collective") == "collective":

@@ -97,6 +97,22 @@ def test_missing_microphone_file_and_bad_microphone_entry(tmp_path):
                                                         "atmosphere": ATMOSPHERE}))
 
 
+def test_condition_blade_motion_replaces_the_rotor_files(tmp_path):
+    """A condition's higher-harmonic pitch, elastic twist and flap harmonics (e.g. HART-II MN) replace the
+    rotor file's in the rotor the stages use; a bad entry stops naming the test file and the field."""
+    motion = {"higher_harmonic_pitch": [{"n": 3, "amplitude_deg": 0.8, "phase_deg": 300.0}],
+              "elastic_twist_harmonics": [{"n": 3, "cos_deg": -0.4, "sin_deg": 0.5}],
+              "prescribed_flap": [{"n": 0, "cos_deg": 2.1, "sin_deg": 0.0}]}
+    rotor = {**ROTOR, "higher_harmonic_pitch": [{"n": 2, "amplitude_deg": 1.0, "phase_deg": 0.0}]}
+    condition = {"rpm": 3000.0, "thrust_N": 100.0, "atmosphere": ATMOSPHERE, **motion}
+    assert {k: rotor_for_test(rotor, condition)[k] for k in motion} == motion
+    assert load_rotor_test(write_test(tmp_path, condition=condition))["rotor_config"]["higher_harmonic_pitch"] == \
+        motion["higher_harmonic_pitch"]
+    bad = {**condition, "higher_harmonic_pitch": [{"n": 3, "amplitude_deg": "0.8 deg", "phase_deg": 300.0}]}
+    with pytest.raises(ConfigError, match=r"case\.yaml: condition\.higher_harmonic_pitch\[0\]\.amplitude_deg: .*number"):
+        load_rotor_test(write_test(tmp_path, condition=bad))
+
+
 def test_missing_airfoil_table_names_the_rotor_file_and_field(tmp_path):
     rotor = {**{k: v for k, v in ROTOR.items() if k != "airfoil"}, "airfoil": {"table": "missing.c81"}}
     with pytest.raises(ConfigError) as error:
@@ -142,9 +158,11 @@ def test_rotor_command_reproduces_closed_form_hover(tmp_path, capsys):
 
 def test_bundled_test_studies_validate():
     tests = {p.stem: load_rotor_test(p) for p in sorted((REPO / "config/tests").glob("*.yaml"))}
-    assert set(tests) == {"hart_ii_bl", "itr_hover"}
-    assert tests["hart_ii_bl"]["microphones_T"].shape == (221, 3)
-    assert np.all(tests["hart_ii_bl"]["microphones_T"][:, 2] == -2.215)
+    hart_ii = {"hart_ii_bl", "hart_ii_bl_measured", "hart_ii_mn_measured", "hart_ii_mv_measured"}
+    assert set(tests) == hart_ii | {"itr_hover"}
+    for name in hart_ii:
+        assert tests[name]["microphones_T"].shape == (221, 3)
+        assert np.all(tests[name]["microphones_T"][:, 2] == -2.215)
     assert tests["itr_hover"]["rotor_config"]["control"] == "fixed"
 
 

@@ -28,41 +28,112 @@ def test_itr_hover_through_the_rotor_command(tmp_path):
     assert row["omega_rad_s"] == pytest.approx(5465.0 * np.pi / 30.0, rel=1e-12) and row["thrust_N"] > 0.0
 
 
+# measured BVISPL carpets (DNW, via PsuAeroacoustics/OpenCOPTER; tests/data/hart_ii/README.md) of the bundled tests
+MEASURED_CARPET = {"hart_ii_bl": "bl", "hart_ii_bl_measured": "bl", "hart_ii_mn_measured": "mn", "hart_ii_mv_measured": "mv"}
+
+
+@pytest.fixture(scope="module")
+def rotor_test_results(tmp_path_factory) -> Path:
+    """`snakemake rotor_tests` in a copy of config/: every bundled test; its results directory."""
+    root = tmp_path_factory.mktemp("rotor_tests")
+    shutil.copytree(REPO / "config", root / "config")
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(REPO / ".numba_cache"))
+    result = subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(root),
+                             "-j2", "rotor_tests"], capture_output=True, text=True, env=env, timeout=1800)
+    assert result.returncode == 0, result.stderr[-4000:]
+    return root / "results" / "tests"
+
+
+def _carpet(base: Path, test: str) -> pd.DataFrame:
+    """NPS BVISPL of the test's microphones with the measured level ``measured_db`` where the measured carpet has
+    the microphone (the MV carpet lacks the x_T = 2 m station)."""
+    carpet = read_table(base / test / "microphones.parquet").merge(read_table(base / test / "metrics.parquet"),
+                                                                 on="observer")
+    measured = np.loadtxt(REPO / f"tests/data/hart_ii/{MEASURED_CARPET[test]}-contour-meas.tec", skiprows=3)
+    level = {(round(y, 2), round(x, 2)): bvispl for y, x, _, bvispl, *_ in measured}
+    carpet["measured_db"] = [level.get((round(y, 2), round(x, 2)), np.nan) for y, x in zip(carpet["y_T_m"], carpet["x_T_m"])]
+    return carpet.dropna(subset=["measured_db"]).reset_index(drop=True)
+
+
+def _figure(carpet: pd.DataFrame, test: str) -> None:
+    if os.environ.get("NPS_FIGURES_DIR"):
+        _write_carpet_comparison(carpet, Path(os.environ["NPS_FIGURES_DIR"]) / f"{test}_bvispl_vs_measured.png", test)
+
+
 @pytest.mark.slow
-def test_rotor_test_studies_run_from_the_snakefile(tmp_path):
-    """`snakemake rotor_tests` in a copy of config/: both studies, metrics finite, the HART-II carpet drawn,
-    and its BVISPL against the measured BL carpet (tests/data/hart_ii/bl-contour-meas.tec, 221 microphones;
+def test_rotor_test_studies_run_from_the_snakefile(rotor_test_results):
+    """Every bundled study through the Snakefile: metrics finite, the HART-II carpets drawn; the rigid-blade
+    HART-II BL BVISPL against the measured BL carpet (tests/data/hart_ii/bl-contour-meas.tec, 221 microphones;
     nothing in NPS is set from it): maximum at the measured maximum's microphone (x_T 0.5 m, y_T 1.81 m,
     under the advancing side) within 2 dB of the measured 113.5 dB, mean difference within ±2 dB, RMS
     difference < 4.5 dB, correlation over the carpet > 0.8. Measured at the time of writing with the Betz
     vortex structure: 113.0 dB, mean +0.3 dB, RMS 3.4 dB, correlation 0.88 (point vortex: 119.3 dB,
     +5.6 dB, 7.2 dB, 0.76; docs/rotor_tests.md)."""
-    shutil.copytree(REPO / "config", tmp_path / "config")
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(REPO / ".numba_cache"))
-    result = subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(tmp_path),
-                             "-j2", "rotor_tests"], capture_output=True, text=True, env=env, timeout=1800)
-    assert result.returncode == 0, result.stderr[-4000:]
-    base = tmp_path / "results" / "tests"
-    assert (base / "hart_ii_bl" / "carpet.png").stat().st_size > 20_000
-    for test in ("hart_ii_bl", "itr_hover"):
+    base = rotor_test_results
+    for test in MEASURED_CARPET:
+        assert (base / test / "carpet.png").stat().st_size > 20_000
+    for test in (*MEASURED_CARPET, "itr_hover"):
         metrics = read_table(base / test / "metrics.parquet")
         assert np.isfinite(metrics.select_dtypes("number").to_numpy()).all()
-    carpet = read_table(base / "hart_ii_bl" / "microphones.parquet").merge(read_table(base / "hart_ii_bl" / "metrics.parquet"),
-                                                                         on="observer")
-    measured = np.loadtxt(REPO / "tests/data/hart_ii/bl-contour-meas.tec", skiprows=3)
-    level = {(round(y, 2), round(x, 2)): bvispl for y, x, _, bvispl, *_ in measured}
-    carpet["measured_db"] = [level[(round(y, 2), round(x, 2))] for y, x in zip(carpet["y_T_m"], carpet["x_T_m"])]
+    carpet = _carpet(base, "hart_ii_bl")
     loudest = carpet.loc[carpet["bvispl_db"].idxmax()]
     assert (round(loudest["x_T_m"], 2), round(loudest["y_T_m"], 2)) == (0.5, 1.81)
     assert abs(loudest["bvispl_db"] - carpet["measured_db"].max()) < 2.0
     difference = carpet["bvispl_db"] - carpet["measured_db"]
     assert abs(difference.mean()) < 2.0 and np.sqrt(np.mean(difference**2)) < 4.5, difference.describe()
     assert np.corrcoef(carpet["bvispl_db"], carpet["measured_db"])[0, 1] > 0.8
-    if os.environ.get("NPS_FIGURES_DIR"):
-        _write_carpet_comparison(carpet, Path(os.environ["NPS_FIGURES_DIR"]) / "hart_ii_bl_bvispl_vs_measured.png")
+    _figure(carpet, "hart_ii_bl")
 
 
-def _write_carpet_comparison(carpet: pd.DataFrame, path: Path) -> None:
+@pytest.mark.slow
+@pytest.mark.parametrize("test, correlation", [("hart_ii_bl_measured", 0.85), ("hart_ii_mn_measured", 0.7),
+                                               ("hart_ii_mv_measured", 0.85)])
+def test_hart_ii_carpets_with_the_measured_blade_motion(rotor_test_results, test, correlation):
+    """BL, MN and MV with the measured blade motion (HHC input, elastic torsion and flap of each condition;
+    config/tests/hart_ii_*_measured.yaml) against their measured carpets (221 / 221 / 208 microphones):
+    mean difference within ±2 dB, RMS difference < 4.5 dB, correlation above ``correlation``. Measured at
+    the time of writing (docs/rotor_tests.md): BL −0.7 / 3.3 dB / 0.89, MN +1.2 / 3.1 dB / 0.77,
+    MV −0.1 / 3.0 dB / 0.91."""
+    carpet = _carpet(rotor_test_results, test)
+    difference = carpet["bvispl_db"] - carpet["measured_db"]
+    assert abs(difference.mean()) < 2.0 and np.sqrt(np.mean(difference**2)) < 4.5, difference.describe()
+    assert np.corrcoef(carpet["bvispl_db"], carpet["measured_db"])[0, 1] > correlation
+    _figure(carpet, test)
+
+
+def _change_from_bl(base: Path, test: str) -> pd.DataFrame:
+    """(NPS, measured) change of the carpet maximum and mean from BL (measured blade motion) to ``test``,
+    on the microphones both measured carpets have (dB)."""
+    bl, other = _carpet(base, "hart_ii_bl_measured"), _carpet(base, test)
+    common = bl.merge(other, on=["x_T_m", "y_T_m"], suffixes=("_bl", ""))
+    return pd.DataFrame({stat: [getattr(common[f"{c}"], stat)() - getattr(common[f"{c}_bl"], stat)()
+                                for c in ("bvispl_db", "measured_db")] for stat in ("max", "mean")},
+                        index=["nps", "measured"])
+
+
+@pytest.mark.slow
+def test_hhc_noise_changes_have_the_measured_direction(rotor_test_results):
+    """From BL to MV the carpet maximum rises (measured +3.5 dB) and from BL to MN and MV the carpet mean
+    rises (measured +1.8 / +1.5 dB): NPS must give each change with the measured sign and at least half its
+    size. Measured at the time of writing: MV maximum +3.4 dB, means MN +3.6 / MV +2.0 dB. With rigid blades
+    (HHC pitch input only) NPS gets all three signs wrong (−1.3, −0.2, −1.1 dB): the elastic torsion the HHC
+    excites (MV 3/rev 1.5° against the 0.8° input) decides (docs/rotor_tests.md)."""
+    mn, mv = (_change_from_bl(rotor_test_results, f"hart_ii_{c}_measured") for c in ("mn", "mv"))
+    for change in (mv["max"], mn["mean"], mv["mean"]):
+        assert change["measured"] > 0.0 and change["nps"] > 0.5 * change["measured"], (mn, mv)
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, raises=AssertionError,
+                   reason="MN's quieter maximum is not predicted: NPS +1.8 dB against the measured -1.1 dB "
+                          "(docs/rotor_tests.md)")
+def test_mn_maximum_is_quieter_than_bl(rotor_test_results):
+    """The measured MN maximum is 1.1 dB below BL's (and moves upstream, x_T −1.5 m, y_T 0.46 m)."""
+    mn = _change_from_bl(rotor_test_results, "hart_ii_mn_measured")
+    assert mn.loc["measured", "max"] < 0.0 and mn.loc["nps", "max"] < 0.0, mn
+
+
+def _write_carpet_comparison(carpet: pd.DataFrame, path: Path, test: str) -> None:
     """Measured and NPS BVISPL carpets on one colour scale, and their difference (docs/rotor_tests.md)."""
     import matplotlib.pyplot as plt
 
@@ -72,7 +143,7 @@ def _write_carpet_comparison(carpet: pd.DataFrame, path: Path) -> None:
     fields = {name: grid[column].unstack().reindex(index=x, columns=y).to_numpy()
               for name, column in (("measured", "measured_db"), ("NPS", "bvispl_db"))}
     fig, axes = plt.subplots(1, 3, figsize=(13, 4.8), constrained_layout=True)
-    levels = np.arange(86.0, 116.0, 1.5)
+    levels = np.arange(86.0, 120.5, 1.5)
     for ax, (name, field) in zip(axes, fields.items()):
         c = ax.contourf(y, x, field, levels=levels, extend="both")
         ax.set_title(f"{name}: max {np.nanmax(field):.1f} dB")
@@ -85,6 +156,6 @@ def _write_carpet_comparison(carpet: pd.DataFrame, path: Path) -> None:
         ax.set_xlabel("y_T (m), advancing side →")
         ax.set_aspect("equal")
     axes[0].set_ylabel("x_T (m), downstream ↑")
-    fig.suptitle("HART-II BL, microphone plane 2.215 m below the hub (measured: DNW via OpenCOPTER)")
+    fig.suptitle(f"{test}, microphone plane 2.215 m below the hub (measured: DNW via OpenCOPTER)")
     fig.savefig(path, dpi=90)
     plt.close(fig)
