@@ -160,12 +160,18 @@ def measured_cn(case: str = "BL"):
     return np.arange(values.size) * 360.0 / values.size, values
 
 
-def read_piv(name: str) -> np.ndarray:
-    """Rows (psi_deg, x_m, y_m, z_m) of a DNW PIV vortex-position file (hub frame)."""
-    rows = []
+def read_piv(name: str, inboard: bool = False) -> np.ndarray:
+    """Rows (psi_deg, x_m, y_m, z_m) of a DNW PIV vortex-position file (hub frame): the tip
+    vortices, or with ``inboard`` only the zones titled "inboard vortex" (MV's advancing side: the
+    opposite-sign vortex trailed inboard of a negatively loaded tip, which NPS's single tip
+    vortex per blade does not represent)."""
+    rows, in_inboard_zone = [], False
     for line in (DATA / name).read_text().splitlines():
+        if line.lstrip().startswith("ZONE"):
+            in_inboard_zone = "inboard vortex" in line
         parts = line.split()
-        if len(parts) == 6 and not line.lstrip().startswith(("TITLE", "VARIABLES", "ZONE")):
+        if (len(parts) == 6 and not line.lstrip().startswith(("TITLE", "VARIABLES", "ZONE"))
+                and in_inboard_zone == inboard):
             rows.append([float(p) for p in parts[2:]])
     return np.array(rows)
 
@@ -186,16 +192,17 @@ def window_metrics(psi_deg, values, lo, hi):
     return float(psi_deg[i]), float(np.ptp(hp[inside])), float(slope[i])
 
 
-def piv_miss_distances(state: wake.WakeState, model: wake.WakeModel) -> list[tuple]:
-    """For each PIV vortex: (side, ψ, y, measured x, z, predicted x, z, miss distance in the
-    cut plane y = y_meas), matching the nearest predicted crossing of any blade's vortex."""
-    return _miss_distances(lambda psi: wake.wake_snapshot(state, model, psi).nodes_m)
+def piv_miss_distances(state: wake.WakeState, model: wake.WakeModel, case: str = "BL") -> list[tuple]:
+    """For each PIV tip vortex of condition ``case``: (side, ψ, y, measured x, z, predicted x, z,
+    miss distance in the cut plane y = y_meas), matching the nearest predicted crossing of any
+    blade's vortex."""
+    return _miss_distances(lambda psi: wake.wake_snapshot(state, model, psi).nodes_m, case)
 
 
-def _miss_distances(nodes_at) -> list[tuple]:
+def _miss_distances(nodes_at, case: str = "BL") -> list[tuple]:
     """PIV comparison for a wake given as blade-0 azimuth (rad) → nodes (B, N, 3) in H' (m)."""
     out = []
-    for side, name in (("advancing", "dnw_adv_bl53.tec"), ("retreating", "dnw_ret_bl53.tec")):
+    for side, name in (("advancing", f"dnw_adv_{case.lower()}53.tec"), ("retreating", f"dnw_ret_{case.lower()}53.tec")):
         data = read_piv(name)
         for psi_deg in np.unique(data[:, 0]):
             nodes = nodes_at(np.radians(psi_deg))
@@ -204,6 +211,20 @@ def _miss_distances(nodes_at) -> list[tuple]:
                 d = np.hypot(cross[:, 0] - x, cross[:, 2] - z)
                 k = int(np.argmin(d))
                 out.append((side, psi_deg, y, x, z, cross[k, 0], cross[k, 2], float(d[k])))
+    return out
+
+
+def paired_height_changes(base: list[tuple], other: list[tuple], max_dx_m: float = 0.2) -> list[tuple]:
+    """Vortex height changes between two conditions' PIV comparisons (records of
+    :func:`piv_miss_distances`): each vortex of ``base`` paired with the vortex of ``other`` in the
+    same cut (ψ, y within 0.1 m) nearest in x (within ``max_dx_m``): (side, measured Δz,
+    predicted Δz) in m, the predicted heights being those of the crossings matched to each."""
+    out = []
+    for side, psi, y, x, z, _, z_pred, _ in base:
+        same_cut = [r for r in other if r[1] == psi and abs(r[2] - y) < 0.1 and abs(r[3] - x) < max_dx_m]
+        if same_cut:
+            match = min(same_cut, key=lambda r: abs(r[3] - x))
+            out.append((side, match[4] - z, match[6] - z_pred))
     return out
 
 
@@ -310,8 +331,8 @@ def _degrees(harmonics) -> list[dict]:
     return [dict(n=n, cos_deg=np.degrees(c), sin_deg=np.degrees(s)) for n, c, s in harmonics]
 
 
-def piv_miss_distances_free(solution: freewake.FreeWakeSolution) -> list[tuple]:
+def piv_miss_distances_free(solution: freewake.FreeWakeSolution, case: str = "BL") -> list[tuple]:
     """As :func:`piv_miss_distances` for the relaxed free wake as the blade loads see it
     (:func:`nps.freewake.wake_snapshot`: the Beddoes model's age grid and length, 1° over 4
     revolutions, free and far wake, the last distortion kept beyond them)."""
-    return _miss_distances(lambda psi: freewake.wake_snapshot(solution, solution.rotors[0].name, psi).nodes_m)
+    return _miss_distances(lambda psi: freewake.wake_snapshot(solution, solution.rotors[0].name, psi).nodes_m, case)
