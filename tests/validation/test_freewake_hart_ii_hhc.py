@@ -54,6 +54,11 @@ def rigid_flap():
     return {name: h.run_free(case=h.CASES[name], measured_flap=False) for name in NAMES}
 
 
+@pytest.fixture(scope="module")
+def piv_records(cases):
+    return {name: h.piv_miss_distances_free(cases[name].result.solution, name) for name in NAMES}
+
+
 def _p2p(psi_deg, cn, window=0):
     return h.window_metrics(psi_deg, cn, *h.WINDOWS_DEG[window])[1]
 
@@ -81,12 +86,12 @@ def test_changes_are_resolved_and_levels_measured(cases, rigid_flap):
         assert abs(predicted / measured - 1.0) < 0.30, (name, predicted, measured)
 
 
-def test_piv_vortex_positions_of_the_hhc_conditions(cases):
+def test_piv_vortex_positions_of_the_hhc_conditions(piv_records):
     """MN and MV PIV tip vortices are placed as well as BL's (mean miss < 0.15 m, vortices too low
     on the inner planes in all three: the same front-of-disk height error, docs "Where the height
     error is"), and the HHC moves the advancing-side vortices the measured way: MN down, MV up,
     each predicted shift between a third and twice the measured one."""
-    records = {name: h.piv_miss_distances_free(cases[name].result.solution, name) for name in NAMES}
+    records = piv_records
     assert {name: len(r) for name, r in records.items()} == {"BL": 46, "MN": 43, "MV": 39}
     for name, rec in records.items():
         assert np.mean([r[-1] for r in rec]) < 0.15, name
@@ -138,3 +143,31 @@ def test_write_figure(cases, rigid_flap, tmp_path):
     fig.savefig(out / "hart_ii_hhc_free_wake.png", dpi=100)
     plt.close(fig)
     assert (out / "hart_ii_hhc_free_wake.png").stat().st_size > 10_000
+
+
+def test_write_piv_figure(piv_records, tmp_path):
+    """Height error of every PIV tip vortex (predicted − measured z) against x, per condition,
+    coloured by the cut's |y| (written to $NPS_FIGURES_DIR when set)."""
+    import matplotlib.pyplot as plt
+
+    out = Path(os.environ.get("NPS_FIGURES_DIR", tmp_path))
+    out.mkdir(parents=True, exist_ok=True)
+    fig, axes = plt.subplots(1, len(NAMES), figsize=(13, 4), sharey=True)
+    for ax, name in zip(axes, NAMES):
+        rec = piv_records[name]
+        for side, marker in (("advancing", "o"), ("retreating", "x")):
+            rows = np.array([r[2:7] for r in rec if r[0] == side])
+            dots = ax.scatter(rows[:, 1], rows[:, 4] - rows[:, 2], c=np.abs(rows[:, 0]), marker=marker,
+                              cmap="viridis", vmin=0.7, vmax=2.0, label=f"{side} side")
+        miss = np.mean([r[-1] for r in rec])
+        ax.axhline(0.0, color="k", lw=0.8)
+        ax.set_title(f"{name}: {len(rec)} vortices, mean miss {miss:.3f} m", fontsize=10)
+        ax.set_xlabel("x_H of the measured vortex (m, aft)")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("z predicted − z measured (m)")
+    axes[0].legend(fontsize=8)
+    fig.colorbar(dots, ax=axes, label="|y| of the PIV cut (m)")
+    fig.suptitle("HART-II PIV tip vortices against the free wake (measured blade motion)")
+    fig.savefig(out / "hart_ii_piv_free_wake.png", dpi=100)
+    plt.close(fig)
+    assert (out / "hart_ii_piv_free_wake.png").stat().st_size > 10_000
