@@ -27,6 +27,8 @@ from nps import bet, bvi, freewake, interaction, wake
 from nps.airfoils import LinearAirfoil
 from nps.rotor import OperatingPoint, RotorGeometry
 
+from multirotor_case import placed
+
 DATA = Path(__file__).resolve().parents[1] / "data" / "hart_ii"
 RADIUS_M, OMEGA, SPEED, SHAFT_RAD = 2.0, 109.12, 32.9, np.radians(4.3)
 RHO, C0, CHORD = 1.2055, 341.7, 0.121
@@ -214,6 +216,30 @@ def _miss_distances(nodes_at, case: str = "BL") -> list[tuple]:
     return out
 
 
+def convection_spacings(records: list[tuple], radius_m: float = RADIUS_M, omega: float = OMEGA,
+                        speed_mps: float = SPEED, shaft_rad: float = SHAFT_RAD) -> np.ndarray:
+    """Streamwise spacing of consecutive vortices in the front half of each PIV cut, measured and
+    predicted, as fractions of the free stream's advance in one blade passage V cos α_s 2π/(BΩ)
+    (rows (measured, predicted); records of :func:`piv_miss_distances`). Consecutive vortices of
+    one cut are a blade passage apart in age, so the spacing measures the convection speed free
+    of any origin or height offset. Left out: the cuts at |y| > 0.875 R (near the lateral edge
+    the tip path runs along x, and the spacing measures the filaments' lateral drift), pairs
+    closer than half a passage (the same vortex listed twice) and pairs whose predicted spacing
+    exceeds 1.5 passages (the nearest-crossing match skipped a vortex)."""
+    advance = speed_mps * np.cos(shaft_rad) * 2.0 * np.pi / (4 * omega)
+    cuts: dict = {}
+    for r in records:
+        cuts.setdefault((r[0], r[1], round(r[2], 1)), []).append(r)
+    out = []
+    for rows in cuts.values():
+        rows = sorted(rows, key=lambda r: r[3])
+        for a, b in zip(rows[:-1], rows[1:]):
+            measured, predicted = (b[3] - a[3]) / advance, (b[5] - a[5]) / advance
+            if a[3] < 0.0 and abs(a[2]) <= 0.875 * radius_m and 0.5 < measured < 1.5 and predicted < 1.5:
+                out.append((measured, predicted))
+    return np.array(out).T
+
+
 def paired_height_changes(base: list[tuple], other: list[tuple], max_dx_m: float = 0.2) -> list[tuple]:
     """Vortex height changes between two conditions' PIV comparisons (records of
     :func:`piv_miss_distances`): each vortex of ``base`` paired with the vortex of ``other`` in the
@@ -305,10 +331,8 @@ def run_free(n_psi: int = 360, n_r: int = 50, free_model: freewake.FreeWakeModel
     geometry, op, trim_row = (case_setup(case, measured_flap) if case is not None
                               else (GEOMETRY, OPERATING_POINT, TRIM_ROW))
     trim = bet.trim_rotor(geometry, op, bet.DiskGrid(n_psi, n_r))
-    row = dict(trim_row, rotor="hart_ii", ct=trim.totals.ct, thrust_N=op.thrust_N,
-               roll_moment_Nm=op.roll_moment_Nm, pitch_moment_Nm=op.pitch_moment_Nm,
-               hub_x_m=0.0, hub_y_m=0.0, hub_z_m=0.0, vel_x_mps=0.0, vel_y_mps=0.0, vel_z_mps=0.0,
-               **{f"r_gh_{i}{j}": float(i == j) for i in range(3) for j in range(3)})
+    row = placed(dict(trim_row, rotor="hart_ii", ct=trim.totals.ct, thrust_N=op.thrust_N,
+                      roll_moment_Nm=op.roll_moment_Nm, pitch_moment_Nm=op.pitch_moment_Nm))
     config = dict(name="hart_ii", n_blades=4, radius_m=RADIUS_M, chord_m=CHORD, root_cutout_m=0.44, twist_deg=-8.0,
                   thickness_ratio=0.12, lock_number=8.0, hinge_offset_m=0.29, rotation="ccw",
                   airfoil=dict(lift_slope_per_rad=6.0, alpha0_deg=-1.2),

@@ -40,12 +40,19 @@ def artifacts(layout, mu_x: float = 0.1, mu_z: float = -0.01, ct: float = 0.005,
         loads = bet.trim_rotor(g, OperatingPoint(omega, mu_x, 0.0, mu_z, RHO, C0, thrust), bet.DiskGrid(n_psi, n_r))
         row = dict(rotor=name, rotation_sign=sign, n_blades=g.n_blades, radius_m=radius_m, omega_rad_s=omega, mu_x=mu_x,
                    mu_y=0.0, mu_z=mu_z, ct=ct, density_kg_m3=RHO, speed_of_sound_mps=C0, thrust_N=thrust,
-                   roll_moment_Nm=0.0, pitch_moment_Nm=0.0, hub_x_m=float(hub[0]), hub_y_m=float(hub[1]),
-                   hub_z_m=float(hub[2]), vel_x_mps=0.0, vel_y_mps=0.0, vel_z_mps=0.0)
-        row.update({f"r_gh_{i}{j}": float(i == j) for i in range(3) for j in range(3)})
-        rows.append(row)
+                   roll_moment_Nm=0.0, pitch_moment_Nm=0.0)
+        rows.append(placed(row, hub))
         configs[name], disks[name], summaries[name] = rotor_config(g), loads.disk, loads.summary()
     return pd.DataFrame(rows), configs, disks, summaries
+
+
+def placed(row: dict, hub_m=(0.0, 0.0, 0.0)) -> dict:
+    """A trim-table row for a rotor whose hub sits at ``hub_m`` (m, G axes) at t = 0, hub frame
+    along the G axes (r_gh = I), aircraft not moving in that frame."""
+    out = dict(row, hub_x_m=float(hub_m[0]), hub_y_m=float(hub_m[1]), hub_z_m=float(hub_m[2]),
+               vel_x_mps=0.0, vel_y_mps=0.0, vel_z_mps=0.0)
+    out.update({f"r_gh_{i}{j}": float(i == j) for i in range(3) for j in range(3)})
+    return out
 
 
 def induced_power_W(disk: pd.DataFrame, n_blades: int = 3) -> float:

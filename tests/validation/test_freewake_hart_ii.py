@@ -85,6 +85,26 @@ def test_piv_vortex_positions(free):
     assert _mean_dz(records, "retreating") > _mean_dz(rigid, "retreating") + 0.01
 
 
+@pytest.mark.xfail(strict=True, reason="issue 12 target not met: mean miss 0.142 m (docs/models/wake_bvi.md, "
+                   "HART-II: front-half upwash and faster convection that no rotor-wake element gives)")
+def test_piv_mean_miss_within_the_issue_target(free):
+    """Issue 12: PIV tip-vortex mean miss distance < 0.05 m (measured 0.142 m)."""
+    records = h.piv_miss_distances_free(free.result.solution)
+    assert np.mean([r[-1] for r in records]) < 0.05
+
+
+def test_front_half_convection_speed(free):
+    """Spacing of consecutive vortices in the front half of the PIV cuts, in blade-passage advances
+    of the free stream (``h.convection_spacings``, 13 pairs): measured 1.04–1.21 (mean 1.12), the wake
+    speeding up over the front half; NPS's free wake convects at the free-stream speed (mean
+    within 5 % of 1; measured 0.96–1.07). The gap is the streamwise half of the PIV miss
+    (docs/models/wake_bvi.md, "Streamwise convection")."""
+    measured, predicted = h.convection_spacings(h.piv_miss_distances_free(free.result.solution))
+    assert measured.size >= 12
+    assert measured.mean() >= 1.08
+    assert abs(predicted.mean() - 1.0) < 0.05
+
+
 def test_halving_the_relaxation_step(free):
     """10° → 5° relaxation grid changes the peak BVI |ΔU_P| on the disk by < 5 %."""
     fine = h.run_free(case=h.CASES["BL"], free_model=freewake.FreeWakeModel(steps_per_rev=72))
