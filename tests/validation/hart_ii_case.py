@@ -226,7 +226,7 @@ def convection_spacings(records: list[tuple], radius_m: float = RADIUS_M, omega:
     the tip path runs along x, and the spacing measures the filaments' lateral drift), pairs
     closer than half a passage (the same vortex listed twice) and pairs whose predicted spacing
     exceeds 1.5 passages (the nearest-crossing match skipped a vortex)."""
-    advance = speed_mps * np.cos(shaft_rad) * 2.0 * np.pi / (4 * omega)
+    advance = speed_mps * np.cos(shaft_rad) * 2.0 * np.pi / (GEOMETRY.n_blades * omega)
     cuts: dict = {}
     for r in records:
         cuts.setdefault((r[0], r[1], round(r[2], 1)), []).append(r)

@@ -126,23 +126,20 @@ def test_disk_tilted_forward_in_level_flight(trims):
 
 
 def test_bvi_intensity_peaks_between_5_and_7_degrees(sweep):
-    rel = sweep
-    peak = max(rel, key=rel.get)
-    assert 5 <= peak <= 7, rel
+    peak = max(sweep, key=sweep.get)
+    assert 5 <= peak <= 7, sweep
 
 
 def test_bvi_intensity_small_in_level_flight_and_at_10_degrees(sweep):
     """Level flight and 10° at most half the peak intensity (≥ 3 dB below; module doc); level
     flight, where the wake passes below the disk, under a tenth (measured 0.06 Beddoes, 0.05 free;
     10°: 0.28, 0.11)."""
-    rel = sweep
-    assert rel[0] <= 0.1 and rel[10] <= 0.5, rel
+    assert sweep[0] <= 0.1 and sweep[10] <= 0.5, sweep
 
 
 def test_bvi_intensity_rises_from_level_flight_to_the_peak(sweep):
     """The intensity grows monotonically from level flight to 6° (Beddoes 0.06, 0.41, 0.66, 0.90,
     1.00; free wake 0.05, 0.53, 0.80, 0.98, 1.00) and falls monotonically from 6° to 10°: one
     interaction regime, not scattered events."""
-    rel = sweep
-    assert rel[0] < rel[3] < rel[4] < rel[5] < rel[6], rel
-    assert rel[6] > rel[7] > rel[8] > rel[10], rel
+    assert sweep[0] < sweep[3] < sweep[4] < sweep[5] < sweep[6], sweep
+    assert sweep[6] > sweep[7] > sweep[8] > sweep[10], sweep

@@ -36,6 +36,12 @@ def free():
     return h.run_free(case=h.CASES["BL"])
 
 
+@pytest.fixture(scope="module")
+def piv(free):
+    """PIV comparison records of the relaxed wake (``h.piv_miss_distances_free``)."""
+    return h.piv_miss_distances_free(free.result.solution)
+
+
 def _mean_dz(records, side):
     return np.mean([r[6] - r[4] for r in records if r[0] == side])
 
@@ -70,36 +76,34 @@ def test_bvi_event_timing(free):
     assert abs(np.median(retreating)) <= 5.0, retreating
 
 
-def test_piv_vortex_positions(free):
+def test_piv_vortex_positions(piv):
     """Mean miss distance below 0.15 m; the vortices higher (closer to the measured ones) than the
     Beddoes wake puts them; the measured flap (precone, tip down on the advancing side, up on the
     retreating side) lifts the retreating-side vortices by > 1 cm against the rigid-flap model."""
-    records = h.piv_miss_distances_free(free.result.solution)
-    miss = np.array([r[-1] for r in records])
-    dz_free = np.mean([r[6] - r[4] for r in records])
+    miss = np.array([r[-1] for r in piv])
+    dz_free = np.mean([r[6] - r[4] for r in piv])
     beddoes = h.piv_miss_distances(h.run(n_psi=72, n_r=20).state, wake.WakeModel())
     dz_beddoes = np.mean([r[6] - r[4] for r in beddoes])
-    assert len(records) == 46 and miss.mean() < 0.15
+    assert len(piv) == 46 and miss.mean() < 0.15
     assert dz_beddoes < dz_free < 0.0
     rigid = h.piv_miss_distances_free(h.run_free(case=h.CASES["BL"], measured_flap=False).result.solution)
-    assert _mean_dz(records, "retreating") > _mean_dz(rigid, "retreating") + 0.01
+    assert _mean_dz(piv, "retreating") > _mean_dz(rigid, "retreating") + 0.01
 
 
 @pytest.mark.xfail(strict=True, reason="issue 12 target not met: mean miss 0.142 m (docs/models/wake_bvi.md, "
                    "HART-II: front-half upwash and faster convection that no rotor-wake element gives)")
-def test_piv_mean_miss_within_the_issue_target(free):
+def test_piv_mean_miss_within_the_issue_target(piv):
     """Issue 12: PIV tip-vortex mean miss distance < 0.05 m (measured 0.142 m)."""
-    records = h.piv_miss_distances_free(free.result.solution)
-    assert np.mean([r[-1] for r in records]) < 0.05
+    assert np.mean([r[-1] for r in piv]) < 0.05
 
 
-def test_front_half_convection_speed(free):
+def test_front_half_convection_speed(piv):
     """Spacing of consecutive vortices in the front half of the PIV cuts, in blade-passage advances
     of the free stream (``h.convection_spacings``, 13 pairs): measured 1.04–1.21 (mean 1.12), the wake
     speeding up over the front half; NPS's free wake convects at the free-stream speed (mean
     within 5 % of 1; measured 0.96–1.07). The gap is the streamwise half of the PIV miss
     (docs/models/wake_bvi.md, "Streamwise convection")."""
-    measured, predicted = h.convection_spacings(h.piv_miss_distances_free(free.result.solution))
+    measured, predicted = h.convection_spacings(piv)
     assert measured.size >= 12
     assert measured.mean() >= 1.08
     assert abs(predicted.mean() - 1.0) < 0.05
