@@ -4,17 +4,16 @@
 import os
 import sys
 
-sys.path.insert(0, workflow.basedir)
-# Scripts run from .snakemake/scripts: make the nps package importable there (ahead of the user's
-# PYTHONPATH), keep numba's on-disk cache inside the project (its key must not depend on a temporary script copy).
-os.environ.update(PYTHONPATH=os.pathsep.join(filter(None, [workflow.basedir, os.environ.get("PYTHONPATH")])), MPLBACKEND="Agg")
+# nps is an installed package (pip install -r requirements.txt installs it editable). Keep numba's on-disk
+# cache inside the project: its key must not depend on the temporary copy of a script in .snakemake/scripts.
+os.environ.update(MPLBACKEND="Agg")
 os.environ.setdefault("NUMBA_CACHE_DIR", os.path.join(workflow.basedir, ".numba_cache"))
 
 CONFIG_FILE = "config/config.yaml"
 # A YAML syntax error in the campaign file stops here with the file, line and column and no traceback
 # (Snakemake's own `configfile:` parser names neither); the content is validated in common.smk.
 if os.path.exists(CONFIG_FILE):
-    from nps.config import ConfigError, read_yaml
+    from nps.app.config import ConfigError, read_yaml
 
     try:
         read_yaml(CONFIG_FILE)

@@ -8,7 +8,7 @@ aircraft), 1,024 samples per revolution. Prints
   and with all threads (numba), and per core;
 * the wall time of the full hemisphere (source lines + kernel + blade sum and resampling).
 Each figure is the best of ``REPEATS`` runs (the machine is shared; the best run is the least
-disturbed one). Run: ``PYTHONPATH=. python benchmarks/bench_acoustics.py``.
+disturbed one). Run: ``python benchmarks/bench_acoustics.py``.
 """
 
 import time
@@ -17,11 +17,11 @@ import numba
 import numpy as np
 import pandas as pd
 
-from nps.acoustics import Observers, TimeGrid, radiate_arrays
-from nps.sources import radiate_rotor
-from nps.observers import hemisphere
-from nps.rotor import RotorMotion
-from nps.sources import ThicknessModel, rotor_sources
+from nps.noise.acoustics import Observers, TimeGrid, radiate_arrays
+from nps.noise.sources import radiate_rotor
+from nps.noise.observers import hemisphere
+from nps.rotor.geometry import RotorMotion
+from nps.noise.sources import ThicknessModel, rotor_sources
 
 REPEATS = 3
 

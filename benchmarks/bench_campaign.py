@@ -27,9 +27,7 @@ from pathlib import Path
 import yaml
 
 REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-from campaign_times import stage_table  # noqa: E402
+from campaign_times import stage_table
 
 
 def snakemake(workdir: Path, cache: Path, *args: str) -> tuple[float, float]:

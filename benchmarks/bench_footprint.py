@@ -8,10 +8,10 @@ import time
 
 import numpy as np
 
-from nps.config import load_mission
-from nps.footprint import GroundGrid, mission_footprint
-from nps.propagation import Ground, Hemisphere
-from nps.trajectory import mission_path
+from nps.app.config import load_mission
+from nps.mission.footprint import GroundGrid, mission_footprint
+from nps.mission.propagation import Ground, Hemisphere
+from nps.mission.trajectory import mission_path
 
 C = 340.29
 

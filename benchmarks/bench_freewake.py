@@ -1,9 +1,9 @@
 """Benchmark: free wake + BVI loads of all rotors of one aircraft in segment 3 (6° descent) at the
 campaign resolution (issue 12 targets on the 2-core machine: coaxial < 20 s, helicopter < 10 s).
 
-The inputs are made as the workflow makes them (``nps.trim.trim_aircraft`` for the segment, then
-``nps.bet.trim_rotor`` per rotor on the config's n_psi × n_r disk, the config's ``wake:`` block and
-``resolution``), then :func:`nps.interaction.aircraft_bvi_loads` is timed: wake relaxation (all
+The inputs are made as the workflow makes them (``nps.rotor.trim.trim_aircraft`` for the segment, then
+``nps.rotor.bet.trim_rotor`` per rotor on the config's n_psi × n_r disk, the config's ``wake:`` block and
+``resolution``), then :func:`nps.wake.interaction.aircraft_bvi_loads` is timed: wake relaxation (all
 rotors together), every rotor's disk velocity from every rotor's wake, re-trims, section loads.
 Prints the first call (including numba's cache load or compilation), then the best of 3 runs
 (wall time and the process CPU time of that run: on the shared machine the wall time depends on
@@ -13,7 +13,7 @@ relaxation iterations and the interaction summary.
 (``FreeWakeModel(far_group_deg=0)``, every 1° segment) and prints, per rotor, the change of
 peak and RMS BVI ΔU_P, of the rotor thrust and of the largest section-load change that the grouping
 makes (docs/models/wake_bvi.md, "Performance").
-Run from the repository root: ``PYTHONPATH=. python benchmarks/bench_freewake.py [--exact] [aircraft ...]``.
+Run from the repository root: ``python benchmarks/bench_freewake.py [--exact] [aircraft ...]``.
 """
 
 import argparse
@@ -25,11 +25,17 @@ import numpy as np
 import pandas as pd
 import yaml
 
-from nps import bet, freewake, interaction, wake
-from nps.atmosphere import isa
-from nps.config import load_aircraft, load_mission
-from nps.rotor import OperatingPoint, RotorGeometry
-from nps.trim import FlightCondition, trim_aircraft
+from nps.rotor import bet
+
+from nps.wake import free as freewake
+
+from nps.wake import interaction
+
+from nps.wake import prescribed as wake
+from nps.core.atmosphere import isa
+from nps.app.config import load_aircraft, load_mission
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
+from nps.rotor.trim import FlightCondition, trim_aircraft
 
 
 def segment_inputs(aircraft_name: str, segment: str = "seg3"):

@@ -1,6 +1,6 @@
 """Benchmark of the HSI stage: 1,368-observer hemisphere (19 elevations × 72 azimuths, 10 R), two rotors.
 
-Prints wall times of nps.hsi.process (M_r search, amplification, shear, shock fit, resampling and
+Prints wall times of nps.noise.hsi.process (M_r search, amplification, shear, shock fit, resampling and
 table assembly) per rotor and in total, after a warm-up call that compiles the numba kernels.
 Target (issue 7): < 2 s for both rotors. Synthetic signals: 1024 samples per revolution, one
 thickness-like negative pulse per blade passage whose amplitude falls off out of plane.
@@ -15,8 +15,8 @@ import time
 import numpy as np
 import pandas as pd
 
-from nps.frames import observer_direction, rot_x
-from nps.hsi import process
+from nps.core.frames import observer_direction, rot_x
+from nps.noise.hsi import process
 
 C0, RHO = 340.3, 1.225
 V = 82.8  # helicopter maximum-speed segment, m/s

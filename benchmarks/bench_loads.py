@@ -9,8 +9,8 @@ import math
 import statistics
 import time
 
-from nps.bet import DiskGrid, trim_rotor
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor.bet import DiskGrid, trim_rotor
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 R = 7.62
 GEOM = RotorGeometry(name="main", n_blades=4, radius_m=R, chord_m=0.58, root_cutout_m=0.15 * R,

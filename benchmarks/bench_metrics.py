@@ -6,8 +6,10 @@ import time
 import numpy as np
 import pandas as pd
 
-from nps import metrics, spectra
-from nps.atmosphere import isa
+from nps.noise import metrics
+
+from nps.noise import spectra
+from nps.core.atmosphere import isa
 
 
 def _case(n_obs=1368, n=1024, seed=0):

@@ -2,12 +2,12 @@
 1° resolution (issue 4 target: < 3 s on the 2-core machine).
 
 That is 18,000 blade stations × 4 blades × 1,440 vortex segments ≈ 1.04e8 segment
-evaluations (``nps.wake.disk_induced_velocity``: every azimuth row builds its own wake
-snapshot and rows run in parallel). Also times the whole BVI step (``nps.bvi.bvi_loads``:
+evaluations (``nps.wake.prescribed.disk_induced_velocity``: every azimuth row builds its own wake
+snapshot and rows run in parallel). Also times the whole BVI step (``nps.wake.bvi.bvi_loads``:
 kernel + Sears filter + section loads). Case: demonstration helicopter main rotor at the
 thesis Table 5.2 condition (μ_x = 0.23, 6° descent, C_T = 0.0095). Prints the first call
 (including numba's cache load or compilation), then best and median of 5 runs.
-Run from the repository root: ``PYTHONPATH=. python benchmarks/bench_wake.py``.
+Run from the repository root: ``python benchmarks/bench_wake.py``.
 """
 
 import math
@@ -16,8 +16,12 @@ import time
 
 import numba
 
-from nps import bet, bvi, wake
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor import bet
+
+from nps.wake import bvi
+
+from nps.wake import prescribed as wake
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 R, OMEGA, MU_X, CT = 7.62, 28.0, 0.23, 0.0095
 GEOM = RotorGeometry(name="main", n_blades=4, radius_m=R, chord_m=0.58, root_cutout_m=0.15 * R,

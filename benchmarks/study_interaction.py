@@ -6,7 +6,7 @@ and prints, per aircraft × BVI segment, the hemisphere maxima of both (BVISPL w
 OASPL, dBA; ``results/{aircraft}/summary.csv``) and, per rotor, what the free wake's interaction
 summary says (``results/{aircraft}/{segment}/wake/interaction.parquet``): the rotor whose wake gives
 the largest share of the rotor's ≥ 2/rev BVI increment, the mean ΔU_P that the other rotors' wakes
-induce on it, and the thrust change they cause before the re-trim (nps.interaction).
+induce on it, and the thrust change they cause before the re-trim (nps.wake.interaction).
 
 Without result directories it runs both campaigns first (benchmarks/bench_campaign.py --study-only,
 with and without --free-wake; about 3 + 5 min on the 2-core machine) and prints their wall and CPU
@@ -26,9 +26,7 @@ from pathlib import Path
 
 import pandas as pd
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
-import bench_campaign  # noqa: E402
+import bench_campaign
 
 START, END = "<!-- interaction tables -->", "<!-- end interaction tables -->"
 # What thesis chapter 7 reports for the BVI segments (isolated Beddoes wakes; its Figs. 7.10, 7.16,

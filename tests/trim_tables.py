@@ -1,10 +1,10 @@
 """Hand-made trim artifacts for stage tests: the columns a test sets, the rest of
-:data:`nps.trim.TRIM_COLUMNS` filled with the values of a level rotor in still air."""
+:data:`nps.rotor.trim.TRIM_COLUMNS` filled with the values of a level rotor in still air."""
 
 import numpy as np
 import pandas as pd
 
-from nps.trim import TRIM_COLUMNS
+from nps.rotor.trim import TRIM_COLUMNS
 
 NEUTRAL = {
     "role": "lift", "rotation_sign": np.int8(1), "n_blades": np.int32(4), "radius_m": 2.0, "omega_rad_s": 28.0,

@@ -1,7 +1,7 @@
 """Command-line entry points, one module per stage (``python -m nps <stage>``): argument parsing only.
 
 Each module builds the stage's ``inputs``, ``outputs`` and ``params`` from its options (defaults read
-from the configuration schemas, :func:`nps.config.schema_default`) and calls the same
+from the configuration schemas, :func:`nps.app.config.schema_default`) and calls the same
 ``nps.stages.<stage>.run`` the workflow runs. :func:`run_stage` prints the stage's report, and turns
 every expected error (bad file, bad field, bad value) into one line on stderr and exit status 2;
 ``--debug`` shows the traceback instead.
@@ -12,7 +12,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from nps.config import schema_default
+from nps.app.config import schema_default
 
 
 class _Parser(argparse.ArgumentParser):
@@ -46,9 +46,9 @@ def run_stage(stage: str, inputs: dict, outputs: dict, params: dict, debug: bool
         params = {**params, "allow_outside_validity": True}
     from nps.stages import stage_function
 
-    from nps.bet import TrimError
-    from nps.resources import ResourceError
-    from nps.trim import AircraftTrimError
+    from nps.rotor.bet import TrimError
+    from nps.app.resources import ResourceError
+    from nps.rotor.trim import AircraftTrimError
 
     try:
         report = stage_function(stage)(inputs, outputs, params)
@@ -68,7 +68,7 @@ def run_stage(stage: str, inputs: dict, outputs: dict, params: dict, debug: bool
 def option_problem(options: dict) -> str | None:
     """First command-line value outside its configuration-schema field: ``options`` maps the option
     (``--isa-delta-k``) to (schema field, value); returns ``"--isa-delta-k: expected ..."`` or None."""
-    from nps.config import field_problem
+    from nps.app.config import field_problem
 
     for option, (field, value) in options.items():
         problem = field_problem("config", field, value)
@@ -86,7 +86,7 @@ def fail(message: str) -> int:
 def provenance(path: str, key: str) -> str:
     """The ``nps.<key>`` metadata of an input artifact (e.g. its segment), "" when absent or unreadable
     (the stage then reports the unreadable file itself)."""
-    from nps.io import read_metadata
+    from nps.app.io import read_metadata
 
     try:
         return str(read_metadata(path).get(key, ""))

@@ -9,7 +9,7 @@ aircraft's common grid (one revolution of the first rotor) into ``--out-dir``.
 from __future__ import annotations
 
 from nps.cli import default, fail, option_problem, parser, provenance, run_stage
-from nps.config import ConfigError, aircraft_rotor, load_aircraft
+from nps.app.config import ConfigError, aircraft_rotor, load_aircraft
 
 
 def main(argv: list[str]) -> int:

@@ -11,7 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from nps.cli import default, fail, parser, run_stage
-from nps.config import ConfigError, load_mission
+from nps.app.config import ConfigError, load_mission
 
 
 def _pairs(items, option):

@@ -7,7 +7,7 @@ Writes, per rotor, ``{rotor}.parquet`` (disk table), ``{rotor}_summary.parquet``
 from __future__ import annotations
 
 from nps.cli import default, fail, option_problem, parser, provenance, run_stage
-from nps.config import ConfigError, aircraft_rotor, load_aircraft
+from nps.app.config import ConfigError, aircraft_rotor, load_aircraft
 
 
 def main(argv: list[str]) -> int:

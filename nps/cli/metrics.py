@@ -11,8 +11,8 @@ or none.
 from __future__ import annotations
 
 from nps.cli import default, fail, option_problem, parser, provenance, run_stage
-from nps.config import BROADBAND_MODELS, ConfigError, load_aircraft
-from nps.metrics import rotor_solidities
+from nps.app.config import BROADBAND_MODELS, ConfigError, load_aircraft
+from nps.noise.metrics import rotor_solidities
 
 
 def main(argv: list[str]) -> int:

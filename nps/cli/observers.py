@@ -1,14 +1,14 @@
 """``python -m nps observers``: one configured observer set of an aircraft in one segment (stage nps.stages.observers).
 
 Reads the trim artifact (hub positions in G at t = 0, aircraft velocity); the set's centre is the mean
-hub of the lift rotors and its radii are in first-rotor radii (nps.observers).
+hub of the lift rotors and its radii are in first-rotor radii (nps.noise.observers).
 """
 
 from __future__ import annotations
 
 from nps.cli import fail, parser, provenance, run_stage
-from nps.config import ConfigError, load_aircraft, load_observer_sets
-from nps.observers import rotor_roles
+from nps.app.config import ConfigError, load_aircraft, load_observer_sets
+from nps.noise.observers import rotor_roles
 
 
 def main(argv: list[str]) -> int:

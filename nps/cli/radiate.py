@@ -9,7 +9,7 @@ Output: observer, group (each group and "total"), time_s (t_k = T0 + k·D/N), p_
 
 from __future__ import annotations
 
-from nps.acoustics import C0_MPS, RHO0_KG_M3
+from nps.noise.acoustics import C0_MPS, RHO0_KG_M3
 from nps.cli import parser, run_stage
 
 

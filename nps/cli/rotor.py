@@ -22,7 +22,7 @@ from nps.cli import fail, parser, run_stage
 
 
 def _test_from_options(args) -> dict:
-    """A rotor-test mapping (nps/schemas/rotor_test.schema.yaml) from the options."""
+    """A rotor-test mapping (nps/app/schemas/rotor_test.schema.yaml) from the options."""
     if bool(args.rotor_file) == bool(args.aircraft):
         raise ValueError("give exactly one of --rotor-file, --aircraft (with --rotor), --test")
     rotor = {"file": str(Path(args.rotor_file).resolve())} if args.rotor_file else \
@@ -91,7 +91,7 @@ def main(argv: list[str]) -> int:
 
 def run_test(test_file: Path, out: Path, n_harmonics: int, debug: bool = False) -> int:
     """Set-up, loads and acoustics of ``test_file`` into ``out``; print the loads and the levels."""
-    from nps.config import ConfigError, load_rotor_test
+    from nps.app.config import ConfigError, load_rotor_test
 
     try:
         test = load_rotor_test(test_file)
@@ -113,8 +113,8 @@ def run_test(test_file: Path, out: Path, n_harmonics: int, debug: bool = False) 
         status = run_stage(stage, inputs, outputs, params, debug)
         if status:
             return status
-    from nps.io import read_signals, read_table
-    from nps.rotor_test import tone_levels
+    from nps.app.io import read_signals, read_table
+    from nps.rig.case import tone_levels
 
     row = read_table(trim).iloc[0]
     bpf_hz = row["n_blades"] * row["omega_rad_s"] / (2.0 * 3.141592653589793)

@@ -4,15 +4,15 @@
 Reads the acoustics directory (and optionally the HSI directory) of a hemisphere observer set moving
 with the aircraft, its observer table and the trim artifact; writes one row per observer × source ×
 1/3-octave band (10 Hz–10 kHz), unabsorbed, referred to ``--reference-radius-m`` (default 10 R of the
-first rotor) by spherical spreading. Schema: nps.source_hemisphere.
+first rotor) by spherical spreading. Schema: nps.mission.source_hemisphere.
 """
 
 from __future__ import annotations
 
 from nps.cli import fail, parser, provenance, run_stage
-from nps.config import ConfigError, load_aircraft
-from nps.io import rotor_path
-from nps.metrics import rotor_solidities
+from nps.app.config import ConfigError, load_aircraft
+from nps.app.io import rotor_path
+from nps.noise.metrics import rotor_solidities
 
 
 def main(argv: list[str]) -> int:

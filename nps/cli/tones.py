@@ -9,8 +9,8 @@ observers are the ``--loudest`` ones (mean-square total pressure) and those list
 from __future__ import annotations
 
 from nps.cli import default, fail, parser, provenance, run_stage
-from nps.config import ConfigError, load_aircraft
-from nps.io import rotor_path
+from nps.app.config import ConfigError, load_aircraft
+from nps.app.io import rotor_path
 
 
 def main(argv: list[str]) -> int:

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from nps.cli import default, fail, option_problem, parser, run_stage
-from nps.config import ConfigError, load_aircraft, load_mission
+from nps.app.config import ConfigError, load_aircraft, load_mission
 
 
 def main(argv: list[str]) -> int:

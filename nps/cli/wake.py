@@ -8,7 +8,7 @@ writes the wake geometry (``{rotor}.parquet`` and a legacy-VTK series ``{rotor}_
 from __future__ import annotations
 
 from nps.cli import default, fail, option_problem, parser, provenance, run_stage
-from nps.config import ConfigError, aircraft_rotor, load_aircraft
+from nps.app.config import ConfigError, aircraft_rotor, load_aircraft
 
 
 def main(argv: list[str]) -> int:

@@ -22,8 +22,8 @@ import numpy as np  # noqa: E402
 from nps.plots import save_figure  # noqa: E402
 import pandas as pd  # noqa: E402
 
-from nps.frames import observer_direction  # noqa: E402
-from nps.signals import signal_arrays  # noqa: E402
+from nps.core.frames import observer_direction  # noqa: E402
+from nps.noise.signals import signal_arrays  # noqa: E402
 
 # label -> (azimuth_deg, elevation_deg) of the observers shown besides the loudest one
 DIRECTIONS = {

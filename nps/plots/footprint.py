@@ -18,7 +18,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
-from nps.footprint import CONTOUR_LEVELS_DB  # noqa: E402
+from nps.mission.footprint import CONTOUR_LEVELS_DB  # noqa: E402
 from nps.plots import save_figure  # noqa: E402
 
 

@@ -15,7 +15,7 @@ import numpy as np  # noqa: E402
 from nps.plots import save_figure  # noqa: E402
 
 if TYPE_CHECKING:
-    from nps.hsi import HsiIntermediate
+    from nps.noise.hsi import HsiIntermediate
 
 STEP_TITLES = ("original", "amplified (eq. 6.1)", "sheared (eq. 6.3-6.6)", "shock-fitted (equal area)")
 
@@ -44,7 +44,7 @@ def plot_intermediate_grid(cases: Mapping[str, tuple], path) -> Path:
 
 
 def plot_intermediate(inter: HsiIntermediate, path) -> Path:
-    """Thesis Fig. 6.3 kind for one observer from :func:`nps.hsi.process`."""
+    """Thesis Fig. 6.3 kind for one observer from :func:`nps.noise.hsi.process`."""
     label = f"obs {inter.observer}, M_r = {inter.mach_r:.3f}"
     return plot_intermediate_grid(
         {label: (inter.time_s, inter.p_original_pa, inter.p_amplified_pa, inter.time_sheared_s, inter.fitted)}, path

@@ -18,7 +18,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
-from nps.spectra import LEVEL_FLOOR_DB, level_db  # noqa: E402
+from nps.noise.spectra import LEVEL_FLOOR_DB, level_db  # noqa: E402
 
 _SOURCES = ("thickness", "loading", "hsi", "broadband", "total")
 
@@ -83,7 +83,7 @@ def loudest_observer_figure(metrics: pd.DataFrame, bands: pd.DataFrame, levels, 
                             harmonics: tuple[int, int], title: str, path: str | os.PathLike):
     """:func:`spectrum_figure` of the observer with the highest total OASPL.
 
-    ``metrics``, ``bands``, ``levels``: the three results of :func:`nps.metrics.metrics_tables`
+    ``metrics``, ``bands``, ``levels``: the three results of :func:`nps.noise.metrics.metrics_tables`
     (observers in the same order); ``trim``: trim table, first row = reference (main) rotor.
     """
     loudest = int(np.argmax(metrics["oaspl_db"].to_numpy()))

@@ -10,13 +10,13 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from nps.signals import signal_arrays
+from nps.noise.signals import signal_arrays
 from nps.plots import save_figure
 import pandas as pd
 
 from nps.plots.maps import map_panels
-from nps.spectra import level_db, narrowband_msp
-from nps.study import hotspot
+from nps.noise.spectra import level_db, narrowband_msp
+from nps.app.study import hotspot
 
 MAP_KINDS = {
     "oaspl": ("oaspl_db", "OASPL (dB re 20 µPa)", "OASPL"),

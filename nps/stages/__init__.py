@@ -3,7 +3,7 @@
 Every stage is ``run(inputs, outputs, params) -> str``:
 
 * ``inputs``: name → path of the artifacts it reads (files, or per-rotor directories),
-* ``outputs``: name → path it writes (written atomically through :func:`nps.io.write_table`),
+* ``outputs``: name → path it writes (written atomically through :func:`nps.app.io.write_table`),
 * ``params``: plain values — validated configuration slices, resolution, and the names of the
   aircraft, segment, observer set and variant it works on (they enter the artifacts' metadata),
 * the return value is a short report for the job's log.

@@ -15,13 +15,13 @@ the loads stage for variant ``base``, of the BVI stage for ``bvi``), non-empty t
 
 from __future__ import annotations
 
-from nps.acoustics import LOADING, THICKNESS, AcousticsError, Observers
-from nps.io import check_provenance, read_table, rotor_path, write_table
-from nps.observers import OBSERVER_STAGES
-from nps.resources import check_memory, estimate_bytes
-from nps.signals import signals_table
-from nps.sources import DISK_COLUMNS, ThicknessModel, common_grid, radiate_rotor
-from nps.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
+from nps.noise.acoustics import LOADING, THICKNESS, AcousticsError, Observers
+from nps.app.io import check_provenance, read_table, rotor_path, write_table
+from nps.noise.observers import OBSERVER_STAGES
+from nps.app.resources import check_memory, estimate_bytes
+from nps.noise.signals import signals_table
+from nps.noise.sources import DISK_COLUMNS, ThicknessModel, common_grid, radiate_rotor
+from nps.rotor.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
 
 OBSERVER_COLUMNS = ("observer", "x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps")
 DISK_STAGE = {"base": "loads", "bvi": "bvi"}  # variant -> stage that wrote its disk tables

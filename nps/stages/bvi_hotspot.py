@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from nps.io import read_signals, read_table
-from nps.study import hotspot
+from nps.app.io import read_signals, read_table
+from nps.app.study import hotspot
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:

@@ -8,7 +8,7 @@ drawn, one panel each), ``level`` (metrics column, e.g. ``bvispl_db``), ``label`
 
 from __future__ import annotations
 
-from nps.io import read_table
+from nps.app.io import read_table
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:

@@ -1,9 +1,9 @@
 """Stage ``certification``: EPNL of an aircraft in the three Chapter 8 / Appendix H procedures.
 
-Each reference procedure (take-off, overflight, approach; nps.trajectory) flies the source
+Each reference procedure (take-off, overflight, approach; nps.mission.trajectory) flies the source
 hemisphere of its configured mission segment in the reference atmosphere (25 °C, 70 %);
-nps.certification evaluates EPNL at the centre and the two 150 m sideline microphones (14 CFR 36
-A36.4 via nps.metrics), their mean, the Stage 3 / Chapter 8 limit for the maximum mass and the
+nps.mission.certification evaluates EPNL at the centre and the two 150 m sideline microphones (14 CFR 36
+A36.4 via nps.noise.metrics), their mean, the Stage 3 / Chapter 8 limit for the maximum mass and the
 margin.
 
 inputs: ``hemisphere_takeoff``, ``hemisphere_overflight``, ``hemisphere_approach`` (source-hemisphere
@@ -21,11 +21,11 @@ from __future__ import annotations
 
 import pandas as pd
 
-from nps.certification import certify, histories_table, summary_table
-from nps.io import read_table, write_table
-from nps.source_hemisphere import hemisphere_from_table
+from nps.mission.certification import certify, histories_table, summary_table
+from nps.app.io import read_table, write_table
+from nps.mission.source_hemisphere import hemisphere_from_table
 from nps.stages.footprint import ground_model
-from nps.trajectory import PROCEDURES, certification_procedure, reference_parameters
+from nps.mission.trajectory import PROCEDURES, certification_procedure, reference_parameters
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:

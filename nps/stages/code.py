@@ -46,7 +46,7 @@ def direct_imports(module: str) -> frozenset[str]:
             base = node.module or ""
             if node.level:
                 base = ".".join(package.split(".")[: len(package.split(".")) - node.level + 1] + ([base] if base else []))
-            # ``from nps import wake`` imports the module nps.wake; ``from nps.io import read_table`` the module nps.io
+            # ``from nps import wake`` imports the module nps.wake.prescribed; ``from nps.app.io import read_table`` the module nps.app.io
             names = [base] + [f"{base}.{alias.name}" for alias in node.names]
         else:
             continue

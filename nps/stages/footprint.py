@@ -1,7 +1,7 @@
 """Stage ``footprint``: ground footprint of an aircraft flying the mission's flight profile.
 
-The profile's legs (nps.trajectory) fly each segment's source hemisphere; nps.footprint propagates
-them to the ground grid and the named microphones (nps.propagation) and reduces L_A(t) to L_Amax
+The profile's legs (nps.mission.trajectory) fly each segment's source hemisphere; nps.mission.footprint propagates
+them to the ground grid and the named microphones (nps.mission.propagation) and reduces L_A(t) to L_Amax
 and SEL per leg and for the mission, the microphones also to PNLT(t) and EPNL, and the grid to
 the 60–80 dB contour areas.
 
@@ -18,16 +18,16 @@ flow_resistivity_kPa_s_m2, coherent), ``atmosphere`` (isa_delta_K, relative_humi
 
 from __future__ import annotations
 
-from nps.atmosphere import isa
-from nps.footprint import GroundGrid, mission_footprint
-from nps.io import read_table, write_table
-from nps.propagation import Ground
-from nps.source_hemisphere import hemisphere_from_table
-from nps.trajectory import mission_path
+from nps.core.atmosphere import isa
+from nps.mission.footprint import GroundGrid, mission_footprint
+from nps.app.io import read_table, write_table
+from nps.mission.propagation import Ground
+from nps.mission.source_hemisphere import hemisphere_from_table
+from nps.mission.trajectory import mission_path
 
 
 def ground_model(spec: dict) -> Ground:
-    """:class:`nps.propagation.Ground` from the ``ground`` configuration slice."""
+    """:class:`nps.mission.propagation.Ground` from the ``ground`` configuration slice."""
     return Ground(spec.get("model", "hard"), float(spec.get("flow_resistivity_kPa_s_m2", 200.0)), bool(spec.get("coherent", True)))
 
 

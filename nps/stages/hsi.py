@@ -1,7 +1,7 @@
 """Stage ``hsi``: HSI processing of every rotor's pressure signals at one observer set (thesis ch. 6).
 
 Each rotor's signals are amplified, sheared and shock-fitted per observer with the rotor's own
-radiation Mach number and distance (nps.hsi); the metrics stage sums the rotors.
+radiation Mach number and distance (nps.noise.hsi); the metrics stage sums the rotors.
 
 inputs: ``signals`` (acoustics directory of ``{rotor}.parquet``), ``observers``, ``trim``.
 outputs: ``hsi``, a directory with per rotor ``{rotor}.parquet`` (group ``hsi``, same grid) and
@@ -20,12 +20,12 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from nps.hsi import OBSERVER_COLUMNS, HsiIntermediate, process
-from nps.io import artifact_rows, check_provenance, read_signals, read_table, rotor_path, write_table
-from nps.observers import OBSERVER_STAGES
-from nps.resources import check_memory, estimate_bytes
-from nps.signals import check_observers
-from nps.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
+from nps.noise.hsi import OBSERVER_COLUMNS, HsiIntermediate, process
+from nps.app.io import artifact_rows, check_provenance, read_signals, read_table, rotor_path, write_table
+from nps.noise.observers import OBSERVER_STAGES
+from nps.app.resources import check_memory, estimate_bytes
+from nps.noise.signals import check_observers
+from nps.rotor.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
 
 
 def intermediate_table(inter: HsiIntermediate) -> pd.DataFrame:

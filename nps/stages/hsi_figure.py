@@ -5,7 +5,7 @@ Stage contract: :mod:`nps.stages`.
 
 from __future__ import annotations
 
-from nps.io import read_signals, read_table
+from nps.app.io import read_signals, read_table
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:
@@ -14,7 +14,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     inputs: ``signals``, ``hsi`` (directories), ``observers``. outputs: ``figure``. params: ``rotors``,
     ``aircraft``, ``segment``, ``variant``, ``description`` (the observers, for the title).
     """
-    from nps.hsi import combine_rotors
+    from nps.noise.hsi import combine_rotors
     from nps.plots.hsi import plot_observer_histories
 
     rotors = list(params["rotors"])

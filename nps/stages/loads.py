@@ -1,4 +1,4 @@
-"""Stage ``loads``: trimmed blade loads of every rotor of one aircraft in one segment (nps.bet).
+"""Stage ``loads``: trimmed blade loads of every rotor of one aircraft in one segment (nps.rotor.bet).
 
 inputs: ``trim`` (trim.parquet). outputs: ``loads``, a directory with, per rotor,
 ``{rotor}.parquet`` (disk table), ``{rotor}_summary.parquet`` (quantity, value, unit) and
@@ -7,23 +7,23 @@ configuration, in aircraft order), ``n_psi``, ``n_r`` (disk resolution), ``aircr
 optional ``allow_outside_validity`` (campaign switch, default false).
 
 Each rotor is solved under its control mode (``control``, ``pitch_deg``, ``flapping``;
-:func:`nps.control.loads_at_trim`): ``collective`` trims the pitch to the trim table's targets,
+:func:`nps.rotor.control.loads_at_trim`): ``collective`` trims the pitch to the trim table's targets,
 ``rpm`` takes the loads at the table's rotor speed (solved by the trim stage), ``fixed`` at the
 given pitch and speed. The summary of an ``rpm`` or ``fixed`` rotor adds its ``omega_rad_s``.
 
 Before computing: the trim artifact must be the aircraft's and segment's (provenance), the disk
-must fit in memory (nps.resources); after each rotor's loads: flap angle and controls (nps.validity).
+must fit in memory (nps.app.resources); after each rotor's loads: flap angle and controls (nps.app.validity).
 """
 
 from __future__ import annotations
 
-from nps import validity
-from nps.bet import DiskGrid
-from nps.control import RotorControl, loads_at_trim
-from nps.io import check_provenance, read_table, rotor_path, write_table
-from nps.resources import check_memory, estimate_bytes
-from nps.rotor import OperatingPoint, RotorGeometry
-from nps.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
+from nps.app import validity
+from nps.rotor.bet import DiskGrid
+from nps.rotor.control import RotorControl, loads_at_trim
+from nps.app.io import check_provenance, read_table, rotor_path, write_table
+from nps.app.resources import check_memory, estimate_bytes
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
+from nps.rotor.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:

@@ -1,7 +1,7 @@
 """Stage ``metrics``: noise metrics and 1/3-octave bands of an aircraft at one observer set.
 
 Sums the rotors' signals (HSI-processed ones where given), adds broadband (Pegg or BPM) and ISO 9613-1
-air absorption when asked (nps.metrics) and writes one row per observer and the band table.
+air absorption when asked (nps.noise.metrics) and writes one row per observer and the band table.
 
 inputs: ``signals`` (acoustics directory), optional ``hsi`` (HSI directory), ``trim``, ``observers``;
 ``disks`` (directory of the rotors' disk tables, the one the acoustics stage radiated) with BPM broadband.
@@ -9,7 +9,7 @@ outputs: ``metrics`` (observer, elevation_deg, azimuth_deg, oaspl_db, oaspl_dba,
 levels …), ``bands`` (observer × source × band), ``figure`` (spectrum of the loudest observer).
 params: ``rotors``, ``solidity`` (rotor → σ), ``atmosphere`` (altitude_m, isa_delta_K,
 relative_humidity_pct), ``broadband`` (``pegg``, ``bpm`` or ``none``; true/false = pegg/none,
-:func:`nps.config.broadband_model`; written to the metadata as given), ``absorption`` (boolean),
+:func:`nps.app.config.broadband_model`; written to the metadata as given), ``absorption`` (boolean),
 ``harmonics`` (first and last main-rotor BPF harmonic of BVISPL), with BPM ``rotor_configs`` (rotor →
 validated aircraft-configuration entry), ``aircraft``, ``segment``, ``obsset``, ``variant``.
 Pegg outside its helicopter main-rotor data range, and BPM on elements outside RP-1218's, are reported
@@ -17,7 +17,7 @@ as warnings (stderr and the report). ``rotor_configs`` (rotor → validated roto
 used for Pegg's validity checks; optional ``allow_outside_validity``.
 
 Before computing: provenance of every input, every observer in every rotor's signals, memory, and
-with Pegg broadband its peak frequency and mean lift coefficient (nps.validity.broadband_findings).
+with Pegg broadband its peak frequency and mean lift coefficient (nps.app.validity.broadband_findings).
 The metrics carry the observer table's validity warnings with their own: levels at observers
 outside the envelope are outside it too.
 """
@@ -28,21 +28,21 @@ import warnings
 
 import numpy as np
 
-from nps import validity
-from nps.atmosphere import isa
-from nps.broadband import pegg_outside_range
-from nps.config import broadband_model
-from nps.io import artifact_rows, check_provenance, read_signals, read_table, rotor_path, write_table
-from nps.metrics import STUDY_BANDS, metrics_tables
-from nps.observers import OBSERVER_STAGES
-from nps.resources import check_memory, estimate_bytes
-from nps.signals import check_observers
-from nps.trim import TRIM_STAGES, trim_row
+from nps.app import validity
+from nps.core.atmosphere import isa
+from nps.noise.broadband.pegg import pegg_outside_range
+from nps.app.config import broadband_model
+from nps.app.io import artifact_rows, check_provenance, read_signals, read_table, rotor_path, write_table
+from nps.noise.metrics import STUDY_BANDS, metrics_tables
+from nps.noise.observers import OBSERVER_STAGES
+from nps.app.resources import check_memory, estimate_bytes
+from nps.noise.signals import check_observers
+from nps.rotor.trim import TRIM_STAGES, trim_row
 
 
 def _bpm_band_msp(inputs: dict, params: dict, trim, observers, atmosphere) -> tuple[dict, list[str]]:
     """Rotor → BPM band MSP at the observers (ascending ids), and warnings for elements outside RP-1218's range."""
-    from nps.broadband_rotor import (DISK_INPUT_COLUMNS, disk_outside_bpm_range, medium_from_atmosphere,
+    from nps.noise.broadband.rotor import (DISK_INPUT_COLUMNS, disk_outside_bpm_range, medium_from_atmosphere,
                                      trimmed_rotor_broadband_msp)
 
     medium = medium_from_atmosphere(atmosphere)

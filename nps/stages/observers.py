@@ -1,4 +1,4 @@
-"""Stage ``observers``: one configured observer set of an aircraft in one segment (nps.observers).
+"""Stage ``observers``: one configured observer set of an aircraft in one segment (nps.noise.observers).
 
 inputs: ``trim`` (hub positions in G at t = 0, aircraft velocity). outputs: ``observers``, the
 observer table of docs/conventions.md: ``observer``, ``x_m``, ``y_m``, ``z_m`` (G, t = 0),
@@ -9,7 +9,7 @@ set's centre) plus the set's own descriptive columns. params: ``spec`` (``observ
 ``rotors`` (rotor name → validated rotor configuration, in aircraft order: blade paths of the
 near-field check), ``aircraft``, ``segment``, ``obsset``; optional ``allow_outside_validity``.
 
-Validity (nps.validity.observer_findings): every observer at least 5 chords from every blade path
+Validity (nps.app.validity.observer_findings): every observer at least 5 chords from every blade path
 and one radius from every hub over one revolution of the first rotor.
 """
 
@@ -17,10 +17,10 @@ from __future__ import annotations
 
 import math
 
-from nps import validity
-from nps.io import check_provenance, read_table, write_table
-from nps.observers import lift_rotors, observer_centre, observer_set, with_directions
-from nps.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
+from nps.app import validity
+from nps.app.io import check_provenance, read_table, write_table
+from nps.noise.observers import lift_rotors, observer_centre, observer_set, with_directions
+from nps.rotor.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:

@@ -14,9 +14,9 @@ from pathlib import Path
 
 import pandas as pd
 
-from nps.acoustics import AcousticsError
-from nps.io import ArtifactError, read_table, write_table
-from nps.sources import radiate
+from nps.noise.acoustics import AcousticsError
+from nps.app.io import ArtifactError, read_table, write_table
+from nps.noise.sources import radiate
 
 
 def read_any(path: str | Path) -> pd.DataFrame:

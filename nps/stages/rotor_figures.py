@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from nps.io import read_table, rotor_path
+from nps.app.io import read_table, rotor_path
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:

@@ -1,4 +1,4 @@
-"""Stage ``rotor_test``: set-up of one isolated-rotor test case (nps.rotor_test).
+"""Stage ``rotor_test``: set-up of one isolated-rotor test case (nps.rig.case).
 
 inputs: ``config`` (the test's YAML, ``config/tests/NAME.yaml``). outputs: ``trim`` (trim artifact,
 one row: the rotor solved under its control mode at the test condition) and ``observers`` (the
@@ -8,10 +8,10 @@ microphones in G, moving with the hub, with their test-frame positions ``x_T_m``
 
 from __future__ import annotations
 
-from nps.bet import DiskGrid
-from nps.config import load_rotor_test
-from nps.io import write_table
-from nps.rotor_test import microphone_table, rotor_test_trim
+from nps.rotor.bet import DiskGrid
+from nps.app.config import load_rotor_test
+from nps.app.io import write_table
+from nps.rig.case import microphone_table, rotor_test_trim
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:

@@ -2,7 +2,7 @@
 
 Per-observer 1/3-octave band levels (10 Hz–10 kHz) per source on a far-field hemisphere moving
 with the aircraft, without air absorption, referred to the reference radius by spherical spreading
-(nps.source_hemisphere: schema and why far field).
+(nps.mission.source_hemisphere: schema and why far field).
 
 inputs: ``signals`` (acoustics directory of the far-field hemisphere set), optional ``hsi`` (its HSI
 directory: the HSI-processed tonal total replaces thickness + loading), ``trim``, ``observers``.
@@ -14,9 +14,9 @@ available here yet: an error), ``reference_radius_m``,
 
 from __future__ import annotations
 
-from nps.config import broadband_model
-from nps.io import read_signals, read_table, write_table
-from nps.source_hemisphere import source_hemisphere_table
+from nps.app.config import broadband_model
+from nps.app.io import read_signals, read_table, write_table
+from nps.mission.source_hemisphere import source_hemisphere_table
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:

@@ -5,7 +5,7 @@ Stage contract: :mod:`nps.stages`.
 
 from __future__ import annotations
 
-from nps.io import read_table
+from nps.app.io import read_table
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:

@@ -9,9 +9,9 @@ from pathlib import Path
 
 import pandas as pd
 
-from nps.io import check_provenance, read_metadata, read_table, rotor_path, write_table
-from nps.study import STAGES, segment_summary
-from nps.trim import TRIM_STAGES
+from nps.app.io import check_provenance, read_metadata, read_table, rotor_path, write_table
+from nps.app.study import STAGES, segment_summary
+from nps.rotor.trim import TRIM_STAGES
 
 
 def stage_wall_times(benchmark_dir: str | Path, aircraft: str, segment: str) -> dict[str, float]:

@@ -1,5 +1,5 @@
 """Stage ``tones``: tone table (level and phase of each BPF harmonic) and narrowband spectra of an aircraft
-at one observer set (nps.tones).
+at one observer set (nps.noise.tones).
 
 inputs: ``signals`` (acoustics directory of ``{rotor}.parquet``), ``trim``.
 outputs: ``tones`` (Parquet, every observer: observer, source, harmonic, frequency_hz, spl_db, phase_rad),
@@ -15,9 +15,9 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from nps.io import read_signals, read_table, write_table
-from nps.tones import loudest_observers, narrowband_table, tone_table
-from nps.trim import TRIM_COLUMNS, trim_row
+from nps.app.io import read_signals, read_table, write_table
+from nps.noise.tones import loudest_observers, narrowband_table, tone_table
+from nps.rotor.trim import TRIM_COLUMNS, trim_row
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:

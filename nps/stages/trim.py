@@ -1,25 +1,25 @@
-"""Stage ``trim``: aircraft trim of one aircraft in one mission segment (nps.trim).
+"""Stage ``trim``: aircraft trim of one aircraft in one mission segment (nps.rotor.trim).
 
-inputs: none. outputs: ``trim`` (trim.parquet, one row per rotor, :data:`nps.trim.TRIM_COLUMNS`).
+inputs: none. outputs: ``trim`` (trim.parquet, one row per rotor, :data:`nps.rotor.trim.TRIM_COLUMNS`).
 params: ``aircraft_config`` (validated aircraft configuration), ``speeds`` (the mission segment's entry for
 this aircraft: forward_speed_mps, climb_speed_mps, optional rotor_omega_scale), ``atmosphere``
 (altitude_m, isa_delta_K, relative_humidity_pct), ``segment`` (segment id), ``n_psi``, ``n_r``
 (disk resolution of the blade-element loads that solve the speeds of ``rpm``-controlled rotors,
-:func:`nps.control.trim_rotor_speeds`); optional ``allow_outside_validity`` (campaign switch,
+:func:`nps.rotor.control.trim_rotor_speeds`); optional ``allow_outside_validity`` (campaign switch,
 default false).
 
-Validity (nps.validity): hover tip Mach and Lock number before the trim, advance ratio, advancing
+Validity (nps.app.validity): hover tip Mach and Lock number before the trim, advance ratio, advancing
 tip Mach, blade loading, mean lift and vortex-ring state after it.
 """
 
 from __future__ import annotations
 
-from nps import validity
-from nps.atmosphere import isa
-from nps.bet import DiskGrid
-from nps.control import trim_rotor_speeds
-from nps.io import write_table
-from nps.trim import FlightCondition
+from nps.app import validity
+from nps.core.atmosphere import isa
+from nps.rotor.bet import DiskGrid
+from nps.rotor.control import trim_rotor_speeds
+from nps.app.io import write_table
+from nps.rotor.trim import FlightCondition
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:

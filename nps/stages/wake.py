@@ -1,15 +1,15 @@
 """Stage ``wake``: tip-vortex wake and BVI loads of every rotor of one aircraft in one segment.
 
 ``wake.model: beddoes`` (default): per rotor, the Beddoes prescribed wake from its trimmed loads
-(nps.wake), and the BVI loads, i.e. the wake's induced velocity added to the trimmed loads without
-re-trim (nps.bvi). ``wake.model: free``: the free-vortex wakes of all rotors relaxed together
-(nps.freewake) and each rotor's loads with every rotor's wake, re-trimmed where the other rotors'
-wakes change its mean inflow (nps.interaction; options in the optional ``wake.free`` block), plus
+(nps.wake.prescribed), and the BVI loads, i.e. the wake's induced velocity added to the trimmed loads without
+re-trim (nps.wake.bvi). ``wake.model: free``: the free-vortex wakes of all rotors relaxed together
+(nps.wake.free) and each rotor's loads with every rotor's wake, re-trimmed where the other rotors'
+wakes change its mean inflow (nps.wake.interaction; options in the optional ``wake.free`` block), plus
 the per-aircraft interaction summary ``interaction.parquet`` in the wake directory. Either way a
 legacy-VTK series of each rotor's wake for ParaView.
 
 inputs: ``trim`` (trim.parquet), ``loads`` (directory of the loads stage). outputs: ``wake``
-(directory: ``{rotor}.parquet`` wake geometry, :data:`nps.wake.WAKE_COLUMNS`, one row per vortex
+(directory: ``{rotor}.parquet`` wake geometry, :data:`nps.wake.prescribed.WAKE_COLUMNS`, one row per vortex
 node per snapshot over one blade passage, ``{rotor}_vtk/``, with the free wake ``interaction.parquet``), ``bvi`` (directory:
 ``{rotor}.parquet``, BVI disk table with the loads' columns). params: ``rotors`` (rotor name →
 validated rotor configuration), ``wake`` (config ``wake`` section: model, A, B, C, D,
@@ -18,18 +18,28 @@ core_radius_chords, core_growth, vortex_structure, optional free), ``revolutions
 (Sears response, default true), ``allow_outside_validity`` (campaign switch, default false).
 
 Before computing: provenance of the trim and loads artifacts (aircraft, segment, rotor), memory
-(nps.resources) and, per rotor, the wake length (nps.validity.wake_findings).
+(nps.app.resources) and, per rotor, the wake length (nps.app.validity.wake_findings).
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from nps import bvi, freewake, interaction, validity, vtk, wake
-from nps.io import check_provenance, read_table, rotor_path, write_table
-from nps.resources import check_memory, estimate_bytes
-from nps.rotor import RotorGeometry, RotorMotion
-from nps.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
+from nps.wake import bvi
+
+from nps.wake import free as freewake
+
+from nps.wake import interaction
+
+from nps.app import validity
+
+from nps.app import vtk
+
+from nps.wake import prescribed as wake
+from nps.app.io import check_provenance, read_table, rotor_path, write_table
+from nps.app.resources import check_memory, estimate_bytes
+from nps.rotor.geometry import RotorGeometry, RotorMotion
+from nps.rotor.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
 
 SUMMARY_COLUMNS = ("quantity", "value", "unit")
 

@@ -1,7 +1,7 @@
 """Bad campaign configurations (issue 14): refused before the first job, in one line naming the file
 and the field (with what was expected).
 
-The workflow validates with ``nps.config.load_campaign`` (workflow/rules/common.smk); most cases call
+The workflow validates with ``nps.app.config.load_campaign`` (workflow/rules/common.smk); most cases call
 it in process on an edited copy of config/config.yaml. Three cases run ``snakemake -n`` to show the
 workflow's behaviour end to end: exit status 1, one ``NPS configuration error`` line, no traceback,
 no ``results/``.
@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from nps.config import ConfigError, load_campaign
+from nps.app.config import ConfigError, load_campaign
 
 REPO = Path(__file__).resolve().parents[2]
 BUNDLED = yaml.safe_load((REPO / "config/config.yaml").read_text())

@@ -26,7 +26,7 @@ import pytest
 import yaml
 
 from nps.__main__ import main as nps_main
-from nps.io import read_metadata, read_table
+from nps.app.io import read_metadata, read_table
 
 REPO = Path(__file__).resolve().parents[2]
 AIRCRAFT = REPO / "config/aircraft/helicopter.yaml"
@@ -320,7 +320,7 @@ def test_debug_shows_the_traceback(chain, tmp_path):
     result = subprocess.run([sys.executable, "-m", "nps", *loads_cmd(chain, tmp_path, trim=chain.observers), "--debug"],
                             capture_output=True, text=True, cwd=REPO, timeout=300)
     assert result.returncode != 0
-    assert "Traceback" in result.stderr and "nps/io.py" in result.stderr and "stage 'observers'" in result.stderr
+    assert "Traceback" in result.stderr and "nps/app/io.py" in result.stderr and "stage 'observers'" in result.stderr
 
 
 def test_the_switch_turns_the_refusal_into_a_recorded_warning(chain, tmp_path, capsys):

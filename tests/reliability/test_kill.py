@@ -4,7 +4,7 @@ byte for byte (the committed manifest of tests/workflow/test_campaign.py's tiny 
 
 The kill is placed exactly: a ``sitecustomize`` module on the jobs' PYTHONPATH wraps
 ``pyarrow.parquet.write_table`` and, once the temporary file of the first metrics table is written
-(before ``nps.io.write_table`` renames it), kills the whole Snakemake process group with SIGKILL.
+(before ``nps.app.io.write_table`` renames it), kills the whole Snakemake process group with SIGKILL.
 About 25 s on an idle 2-core machine (helicopter only), so it runs by default.
 """
 
@@ -21,11 +21,8 @@ import pytest
 import yaml
 
 REPO = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(REPO / "benchmarks"))
-sys.path.insert(0, str(REPO / "tests" / "workflow"))
-
-from artifact_digests import compare, digests, read_manifest  # noqa: E402
-from test_campaign import TINY  # noqa: E402
+from campaigns import TINY
+from nps.app.digests import compare, digests, read_manifest
 
 TARGET = "hemisphere_base.parquet"  # metrics table: written late, after most artifacts
 SITECUSTOMIZE = f'''

@@ -1,4 +1,4 @@
-"""Unit tests of nps.acoustics: derivatives, reception time, resampling, periodic path, CLI."""
+"""Unit tests of nps.noise.acoustics: derivatives, reception time, resampling, periodic path, CLI."""
 
 import numpy as np
 import pandas as pd
@@ -7,9 +7,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from nps.__main__ import main as nps_main
-from nps.acoustics import AcousticsError, Observers, TimeGrid, fourier_resample, time_derivative
-from nps.sources import _emission_time, radiate, radiate_rotor
-from nps.io import read_table, write_table
+from nps.noise.acoustics import AcousticsError, Observers, TimeGrid, fourier_resample, time_derivative
+from nps.noise.sources import _emission_time, radiate, radiate_rotor
+from nps.app.io import read_table, write_table
 
 
 def test_time_derivative_sixth_order():

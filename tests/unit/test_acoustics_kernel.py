@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from nps.acoustics import OBSERVER_BLOCK, Observers, TimeGrid
-from nps.sources import radiate_rotor
-from nps.sources import ThicknessModel
+from nps.noise.acoustics import OBSERVER_BLOCK, Observers, TimeGrid
+from nps.noise.sources import radiate_rotor
+from nps.noise.sources import ThicknessModel
 from tests.unit.test_acoustics_stage import hover_disk, trim_rows
 
 

@@ -5,16 +5,16 @@ import pandas as pd
 import pytest
 
 from nps.__main__ import main as nps_main
-from nps.acoustics import AcousticsError
-from nps.acoustics import Observers
-from nps.io import ArtifactError, read_table, rotor_path, write_table
-from nps.signals import signals_table
-from nps.sources import common_grid, radiate_rotor
+from nps.noise.acoustics import AcousticsError
+from nps.noise.acoustics import Observers
+from nps.app.io import ArtifactError, read_table, rotor_path, write_table
+from nps.noise.signals import signals_table
+from nps.noise.sources import common_grid, radiate_rotor
 from nps.stages.acoustics import run
-from nps.trim import trim_row
+from nps.rotor.trim import trim_row
 from tests.trim_tables import complete_trim
-from nps.observers import points
-from nps.sources import ThicknessModel
+from nps.noise.observers import points
+from nps.noise.sources import ThicknessModel
 
 RADIUS = 2.0
 

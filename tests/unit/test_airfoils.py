@@ -1,4 +1,4 @@
-"""Airfoil tables (nps.airfoils): C81 parser round trip, bilinear interpolation against hand
+"""Airfoil tables (nps.rotor.airfoils): C81 parser round trip, bilinear interpolation against hand
 values from the NACA 0012 deck, CSV polars, the Viterna–Corrigan extension and bad input."""
 
 import math
@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from nps.airfoils import (
+from nps.rotor.airfoils import (
     AirfoilError,
     LinearAirfoil,
     PolarTable,

@@ -1,10 +1,10 @@
-"""Unit tests of the ISO 9613-1 absorption additions to nps.atmosphere (and isa() unchanged)."""
+"""Unit tests of the ISO 9613-1 absorption additions to nps.core.atmosphere (and isa() unchanged)."""
 
 import numpy as np
 import pytest
 
-from nps import spectra
-from nps.atmosphere import (
+from nps.noise import spectra
+from nps.core.atmosphere import (
     absorb_band_levels,
     absorb_msp,
     absorb_periodic_signal,

@@ -1,4 +1,4 @@
-"""Unit tests of nps.bet: section kernel properties, disk-table contract, signs, errors."""
+"""Unit tests of nps.rotor.bet: section kernel properties, disk-table contract, signs, errors."""
 
 import math
 
@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from nps.bet import (
+from nps.rotor.bet import (
     DISK_COLUMNS,
     Controls,
     DiskGrid,
@@ -17,8 +17,8 @@ from nps.bet import (
     section_forces,
     trim_rotor,
 )
-from nps.airfoils import LinearAirfoil
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor.airfoils import LinearAirfoil
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 R = 7.62
 GEOM = RotorGeometry(name="main", n_blades=4, radius_m=R, chord_m=0.58, root_cutout_m=0.15 * R,
@@ -178,7 +178,7 @@ def test_cli_writes_disk_summary_and_history(tmp_path, repo_root):
     import pandas as pd
 
     from nps.__main__ import main
-    from nps.io import read_table, write_table
+    from nps.app.io import read_table, write_table
     from tests.trim_tables import complete_trim
 
     trim = complete_trim(pd.DataFrame({"rotor": ["main"], "omega_rad_s": [28.0], "mu_x": [0.2], "mu_y": [0.0], "mu_z": [0.02],

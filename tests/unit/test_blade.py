@@ -1,4 +1,4 @@
-"""Blade tables (nps.blade) in the loads: a table encoding the linear blade reproduces it, a
+"""Blade tables (nps.rotor.blade) in the loads: a table encoding the linear blade reproduces it, a
 tapered blade against the closed-form integral of blade element theory, local columns in the
 disk table, a stall polar changing only stalled sections, and bad input."""
 
@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from nps.airfoils import LinearAirfoil, PolarTable, AirfoilTable
-from nps.bet import Controls, DiskGrid, rotor_loads, section_forces, trim_rotor
-from nps.blade import BladeError, BladeTable, blade_from_config, read_blade_csv
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor.airfoils import LinearAirfoil, PolarTable, AirfoilTable
+from nps.rotor.bet import Controls, DiskGrid, rotor_loads, section_forces, trim_rotor
+from nps.rotor.blade import BladeError, BladeTable, blade_from_config, read_blade_csv
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 R = 7.62
 GEOM = RotorGeometry(name="main", n_blades=4, radius_m=R, chord_m=0.58, root_cutout_m=0.15 * R,

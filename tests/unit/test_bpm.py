@@ -1,14 +1,14 @@
-"""Unit tests of nps.bpm (RP-1218 scaling laws) and nps.broadband_rotor (rotation average, Doppler)."""
+"""Unit tests of nps.noise.broadband.bpm (RP-1218 scaling laws) and nps.noise.broadband.rotor (rotation average, Doppler)."""
 
 import numpy as np
 import pandas as pd
 import pytest
 
-from nps import bpm
-from nps.atmosphere import isa
-from nps.broadband_rotor import (BladeEdge, SourceKinematics, _radiation, disk_outside_bpm_range,
+from nps.noise.broadband import bpm
+from nps.core.atmosphere import isa
+from nps.noise.broadband.rotor import (BladeEdge, SourceKinematics, _radiation, disk_outside_bpm_range,
                                  medium_from_atmosphere, rotor_broadband_msp)
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 MEDIUM = bpm.Medium(340.0, 1.5e-5)
 F_HZ = 1000.0 * 10.0 ** (np.arange(-10, 14) / 10.0)
@@ -194,8 +194,8 @@ def test_doppler_interpolation_matches_direct_evaluation():
     observer = np.array([20.0, 5.0, -8.0])
     out = rotor_broadband_msp(disk, geometry, operating, observer[None], MEDIUM, BANDS, EDGE, n_azimuth=12)
     # direct: the same geometry, spectra evaluated at f_c / D (no interpolation)
-    from nps.broadband_rotor import _average  # noqa: PLC0415
-    from nps.spectra import third_octave_bands  # noqa: PLC0415
+    from nps.noise.broadband.rotor import _average  # noqa: PLC0415
+    from nps.noise.spectra import third_octave_bands  # noqa: PLC0415
     psi, r = disk["psi_rad"].to_numpy().reshape(12, -1), disk["r_m"].to_numpy().reshape(12, -1)
     ut, up = disk["ut_mps"].to_numpy().reshape(12, -1), 8.0
     e_r = np.stack([np.cos(psi), np.sin(psi), 0 * psi], -1)

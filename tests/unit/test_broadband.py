@@ -1,9 +1,9 @@
-"""Unit tests of nps.broadband (Pegg model plumbing: geometry, lift term, scaling, errors)."""
+"""Unit tests of nps.noise.broadband.pegg (Pegg model plumbing: geometry, lift term, scaling, errors)."""
 
 import numpy as np
 import pytest
 
-from nps import broadband
+from nps.noise.broadband import pegg as broadband
 
 
 def test_observer_geometry():

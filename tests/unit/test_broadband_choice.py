@@ -1,5 +1,5 @@
-"""``models.broadband: pegg | bpm | none`` in the metrics stage (nps.stages.metrics, nps.config.broadband_model,
-nps.broadband_rotor.trimmed_rotor_broadband_msp)."""
+"""``models.broadband: pegg | bpm | none`` in the metrics stage (nps.stages.metrics, nps.app.config.broadband_model,
+nps.noise.broadband.rotor.trimmed_rotor_broadband_msp)."""
 
 import copy
 
@@ -7,13 +7,13 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from nps.atmosphere import isa
-from nps.broadband_rotor import hub_frame_observers, medium_from_atmosphere, rotor_broadband_msp
-from nps.config import ConfigError, broadband_model, load_aircraft, read_yaml, validate
-from nps.io import read_metadata, read_table, write_table
-from nps.metrics import STUDY_BANDS, rotor_solidities
-from nps.rotor import OperatingPoint, RotorGeometry
-from nps.spectra import level_db
+from nps.core.atmosphere import isa
+from nps.noise.broadband.rotor import hub_frame_observers, medium_from_atmosphere, rotor_broadband_msp
+from nps.app.config import ConfigError, broadband_model, load_aircraft, read_yaml, validate
+from nps.app.io import read_metadata, read_table, write_table
+from nps.noise.metrics import STUDY_BANDS, rotor_solidities
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
+from nps.noise.spectra import level_db
 from nps.stages.metrics import run
 from tests.trim_tables import complete_trim
 

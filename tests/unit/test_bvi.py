@@ -1,12 +1,16 @@
-"""Unit tests of nps.bvi: blade-frame resolution, filters, BVI disk table."""
+"""Unit tests of nps.wake.bvi: blade-frame resolution, filters, BVI disk table."""
 
 import math
 
 import numpy as np
 import pytest
 
-from nps import bet, bvi, wake
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor import bet
+
+from nps.wake import bvi
+
+from nps.wake import prescribed as wake
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 GEO = RotorGeometry(
     name="test", n_blades=4, radius_m=2.0, chord_m=0.121, root_cutout_m=0.44, twist_rad=math.radians(-8.0),

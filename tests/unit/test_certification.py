@@ -1,13 +1,13 @@
-"""Flight profiles and certification procedures (nps.trajectory), EPNL and limits (nps.certification)."""
+"""Flight profiles and certification procedures (nps.mission.trajectory), EPNL and limits (nps.mission.certification)."""
 
 import math
 
 import numpy as np
 import pytest
 
-from nps.certification import certify, microphone_histories, noise_limit_epndb
-from nps.propagation import Ground
-from nps.trajectory import (
+from nps.mission.certification import certify, microphone_histories, noise_limit_epndb
+from nps.mission.propagation import Ground
+from nps.mission.trajectory import (
     FlightPathError,
     certification_procedure,
     mission_path,
@@ -107,7 +107,7 @@ def test_epnl_hand_made_tonal_history():
     # a flat broadband spectrum has no tone correction: PNLT = PNL
     flat = np.full((k.size, BANDS.size), 0.0) + (80.0 - 2.0 * np.abs(k))[:, None]
     _, hist_flat = microphone_histories(flat[None], BANDS)
-    from nps.metrics import pnl
+    from nps.noise.metrics import pnl
     assert hist_flat[0] == pytest.approx(pnl(flat[:, 7:]), abs=1e-9)
 
 

@@ -1,10 +1,10 @@
-"""Cluster requests of the workflow jobs (nps.resources.job_*): cover the measured peaks, grow with
+"""Cluster requests of the workflow jobs (nps.app.resources.job_*): cover the measured peaks, grow with
 resolution and attempt, threads only where the numba kernels are parallel."""
 
 import pytest
 
-from nps import acoustics
-from nps import resources as res
+from nps.noise import acoustics
+from nps.app import resources as res
 
 BUNDLED = {"n_psi": 360, "n_r": 50, "wake_revolutions": 4, "samples_per_rev": 1024}
 # max_rss (MB) of the helicopter seg3/seg5 jobs at the bundled resolution (Snakemake benchmarks,

@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from nps.config import ConfigError, load_aircraft, load_campaign, load_mission, read_yaml
+from nps.app.config import ConfigError, load_aircraft, load_campaign, load_mission, read_yaml
 
 REPO = Path(__file__).resolve().parents[2]
 

@@ -1,4 +1,4 @@
-"""Rotor control modes (nps.control): rpm trim, fixed pitch and speed against the closed-form
+"""Rotor control modes (nps.rotor.control): rpm trim, fixed pitch and speed against the closed-form
 hover, rigid-blade collective trim, and configuration errors."""
 
 import math
@@ -6,10 +6,10 @@ import math
 import numpy as np
 import pytest
 
-from nps.airfoils import LinearAirfoil
-from nps.bet import DiskGrid, TrimError, trim_rotor
-from nps.control import RotorControl, at_rotor_speed, solve_rotor
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor.airfoils import LinearAirfoil
+from nps.rotor.bet import DiskGrid, TrimError, trim_rotor
+from nps.rotor.control import RotorControl, at_rotor_speed, solve_rotor
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 PROP = RotorGeometry(name="prop", n_blades=2, radius_m=0.12, chord_m=0.018, root_cutout_m=0.015,
                      twist_rad=math.radians(-20.0), thickness_ratio=0.1, lock_number=1.0)
@@ -82,8 +82,8 @@ def test_rpm_controlled_hexacopter_carries_one_rotor_speed_through_trim_and_load
     wake, acoustics and HSI stages read from the table)."""
     from pathlib import Path
 
-    from nps.config import load_aircraft
-    from nps.io import read_table
+    from nps.app.config import load_aircraft
+    from nps.app.io import read_table
     from nps.stages import loads as loads_stage
     from nps.stages import trim as trim_stage
 

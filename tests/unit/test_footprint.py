@@ -1,12 +1,12 @@
-"""Mission footprints (nps.footprint): the line-source analytic check, exposure, contour areas."""
+"""Mission footprints (nps.mission.footprint): the line-source analytic check, exposure, contour areas."""
 
 import numpy as np
 import pytest
 
-from nps.footprint import FootprintError, GroundGrid, contour_areas, exposure_metrics, mission_footprint, touches_edge
-from nps.propagation import Ground, Hemisphere, Trajectory, propagate
-from nps.spectra import LEVEL_FLOOR_DB
-from nps.trajectory import FlightPath, Leg
+from nps.mission.footprint import FootprintError, GroundGrid, contour_areas, exposure_metrics, mission_footprint, touches_edge
+from nps.mission.propagation import Ground, Hemisphere, Trajectory, propagate
+from nps.noise.spectra import LEVEL_FLOOR_DB
+from nps.mission.trajectory import FlightPath, Leg
 
 EL = np.linspace(-90.0, 0.0, 19)
 AZ = np.arange(72) * 5.0

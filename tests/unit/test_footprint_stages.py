@@ -5,10 +5,10 @@ import pandas as pd
 import pytest
 
 from nps.__main__ import main as nps_main
-from nps.io import read_metadata, read_table, write_table
-from nps.source_hemisphere import COLUMNS
+from nps.app.io import read_metadata, read_table, write_table
+from nps.mission.source_hemisphere import COLUMNS
 from nps.stages import stage_function
-from nps.spectra import third_octave_bands
+from nps.noise.spectra import third_octave_bands
 from tests.unit.test_footprint import omnidirectional
 
 MISSION = {

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from nps import frames
+from nps.core import frames
 
 
 def test_main_rotor_hub_frame_axes():

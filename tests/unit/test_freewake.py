@@ -1,10 +1,16 @@
-"""Free-vortex wake (nps.freewake): initial guess, guards, errors, frames."""
+"""Free-vortex wake (nps.wake.free): initial guess, guards, errors, frames."""
 
 import numpy as np
 import pytest
 
-from nps import bet, bvi, freewake, wake
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor import bet
+
+from nps.wake import bvi
+
+from nps.wake import free as freewake
+
+from nps.wake import prescribed as wake
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 R, OMEGA = 2.0, 109.12
 GEOMETRY = RotorGeometry(name="demo", n_blades=4, radius_m=R, chord_m=0.121, root_cutout_m=0.44,
@@ -97,7 +103,7 @@ def test_bad_placement_is_named(rotor):
 def test_wake_table_of_the_free_wake(rotor):
     """The free wake writes the wake artifact with the Beddoes table's columns and node count;
     with a zero distortion the positions equal the Beddoes table's."""
-    from nps.rotor import RotorMotion
+    from nps.rotor.geometry import RotorMotion
 
     _, placement = rotor
     motion = RotorMotion(np.zeros(3), np.array([-32.9, 0.0, 0.0]), np.eye(3), OMEGA, 1, 4)

@@ -1,4 +1,4 @@
-"""Unit tests of nps.hsi: eq. 6.1/6.4 fits, M_r kinematics, eq. 6.5 shear, shock fit API, process().
+"""Unit tests of nps.noise.hsi: eq. 6.1/6.4 fits, M_r kinematics, eq. 6.5 shear, shock fit API, process().
 
 Tolerances: kinematics against closed forms to 1e-6 (parabolic refinement of 720 samples per
 revolution); eq. 6.5 identities to 1e-12 relative; equal areas to 1e-9 relative.
@@ -9,8 +9,8 @@ import pandas as pd
 import pytest
 from scipy.optimize import minimize_scalar
 
-from nps import hsi
-from nps.frames import rot_x, rot_y
+from nps.noise import hsi
+from nps.core.frames import rot_x, rot_y
 
 C0 = 340.0
 RHO = 1.225
@@ -232,9 +232,9 @@ def test_combine_rotors_sums_per_observer_and_time():
 
 
 def test_cli_writes_hsi_table_diagnostics_intermediate_and_figure(tmp_path):
-    """python -m nps hsi: artifacts written through nps.io with the contract columns; an unknown rotor is one line, exit 2."""
+    """python -m nps hsi: artifacts written through nps.app.io with the contract columns; an unknown rotor is one line, exit 2."""
     from nps.cli.hsi import main
-    from nps.io import read_metadata, read_table, write_table
+    from nps.app.io import read_metadata, read_table, write_table
     from tests.trim_tables import complete_trim
 
     row = trim_row(radius=2.0, mtip=0.86, velocity=(30.0, 0.0, 0.0))
@@ -256,12 +256,12 @@ def test_cli_writes_hsi_table_diagnostics_intermediate_and_figure(tmp_path):
 
 def test_hsi_and_its_figures_import_without_the_kernels():
     """Summing or plotting HSI signals (hsi_figure job) does not load the compiled HSI kernels:
-    nps.hsi imports nps.hsi_kernels only when a kernel runs."""
+    nps.noise.hsi imports nps.noise.hsi_kernels only when a kernel runs."""
     import subprocess
     import sys
     from pathlib import Path
 
-    code = "import sys, nps.hsi, nps.plots.hsi; print('nps.hsi_kernels' in sys.modules)"
+    code = "import sys, nps.noise.hsi, nps.plots.hsi; print('nps.noise.hsi_kernels' in sys.modules)"
     repo = Path(__file__).resolve().parents[2]
     out = subprocess.run([sys.executable, "-c", code], cwd=repo, capture_output=True, text=True, check=True).stdout
     assert out.strip() == "False"

@@ -7,7 +7,7 @@ import pandas as pd
 import pyarrow.parquet as pq
 import pytest
 
-from nps.io import ArtifactError, read_metadata, read_table, write_table
+from nps.app.io import ArtifactError, read_metadata, read_table, write_table
 
 
 def test_bit_identical_rewrites(tmp_path):
@@ -35,12 +35,12 @@ def test_non_finite_is_refused_and_nothing_is_written(tmp_path, bad):
 
 
 def test_failed_write_leaves_no_partial_file(tmp_path, monkeypatch):
-    import nps.io
+    import nps.app.io
 
     def explode(*args, **kwargs):
         raise OSError("disk full")
 
-    monkeypatch.setattr(nps.io.pq, "write_table", explode)
+    monkeypatch.setattr(nps.app.io.pq, "write_table", explode)
     with pytest.raises(OSError):
         write_table(pd.DataFrame({"a": [1.0]}), tmp_path / "x.parquet", stage="test")
     assert list(tmp_path.iterdir()) == []
@@ -54,8 +54,8 @@ def test_read_names_missing_columns(tmp_path):
 
 def test_signal_arrays_inverts_signals_table_in_any_row_order():
     """signal_arrays(signals_table(p)) == p, also after shuffling rows (the non-canonical path)."""
-    from nps.acoustics import TimeGrid
-    from nps.signals import signal_arrays, signals_table
+    from nps.noise.acoustics import TimeGrid
+    from nps.noise.signals import signal_arrays, signals_table
 
     rng = np.random.default_rng(3)
     ids = np.array([7, 2, 5])

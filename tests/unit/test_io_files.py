@@ -1,4 +1,4 @@
-"""Artifact files (nps.io.write_table): umask permissions, temporary files removed on failure and
+"""Artifact files (nps.app.io.write_table): umask permissions, temporary files removed on failure and
 after a killed write, bytes of a redone write identical to an uninterrupted one."""
 
 import os
@@ -13,8 +13,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-import nps.io
-from nps.io import remove_stale_temporaries, write_table
+import nps.app.io
+from nps.app.io import remove_stale_temporaries, write_table
 
 REPO = Path(__file__).resolve().parents[2]
 LARGE_ROWS = 2_000_000
@@ -43,14 +43,14 @@ def test_artifact_gets_the_umask_permissions(tmp_path, umask):
 def test_failure_mid_write_removes_the_temporary_and_keeps_the_old_artifact(tmp_path, monkeypatch):
     path = write_table(pd.DataFrame({"a": [1.0]}), tmp_path / "x.parquet", stage="test")
     before = path.read_bytes()
-    real_write = nps.io.pq.write_table
+    real_write = nps.app.io.pq.write_table
 
     def write_then_fail(table, where, **kwargs):
         real_write(table, where, **kwargs)
         assert temporaries(tmp_path)  # the temporary exists while writing
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(nps.io.pq, "write_table", write_then_fail)
+    monkeypatch.setattr(nps.app.io.pq, "write_table", write_then_fail)
     with pytest.raises(KeyboardInterrupt):
         write_table(pd.DataFrame({"a": [2.0]}), path, stage="test")
     assert temporaries(tmp_path) == [] and path.read_bytes() == before
@@ -68,18 +68,17 @@ def test_stale_temporaries_of_the_same_output_only_are_removed(tmp_path):
 
 WRITER = """
 import sys
-sys.path.insert(0, {tests!r})
-from test_io_files import large_table
-from nps.io import write_table
-write_table(large_table(), sys.argv[1], stage="test", metadata={{"case": "kill"}})
+from test_io_files import large_table  # this file, on the child's PYTHONPATH
+from nps.app.io import write_table
+write_table(large_table(), sys.argv[1], stage="test", metadata={"case": "kill"})
 """
 
 
 def test_killed_write_leaves_an_orphan_that_the_redone_write_removes(tmp_path):
     out = tmp_path / "killed" / "big.parquet"
     out.parent.mkdir()
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(REPO), os.environ.get("PYTHONPATH", "")])}
-    writer = subprocess.Popen([sys.executable, "-c", WRITER.format(tests=str(Path(__file__).parent)), str(out)], env=env)
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).parent)}
+    writer = subprocess.Popen([sys.executable, "-c", WRITER, str(out)], env=env)
     deadline = time.monotonic() + 120.0
     try:
         while True:  # kill once Parquet bytes are flowing into the temporary file

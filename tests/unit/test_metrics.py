@@ -1,11 +1,13 @@
-"""Unit tests of nps.metrics: levels of synthetic signals, PNL/PNLT properties, artifact tables."""
+"""Unit tests of nps.noise.metrics: levels of synthetic signals, PNL/PNLT properties, artifact tables."""
 
 import numpy as np
 import pandas as pd
 import pytest
 
-from nps import metrics, spectra
-from nps.atmosphere import isa
+from nps.noise import metrics
+
+from nps.noise import spectra
+from nps.core.atmosphere import isa
 
 P_REF2 = 4e-10
 
@@ -149,7 +151,7 @@ def test_cli_end_to_end(tmp_path, repo_root):
     """`python -m nps metrics` on synthetic artifacts writes both tables (and a figure) with the
     contract columns, and a missing rotor signal is a clear error (exit 2), not a traceback."""
     from nps.cli.metrics import main
-    from nps.io import read_table, write_table
+    from nps.app.io import read_table, write_table
 
     n = 256
     period = 2 * np.pi / 28.0

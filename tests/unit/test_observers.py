@@ -1,10 +1,10 @@
-"""Unit tests of nps.observers: map convention, counts, radii, ground grid, motion."""
+"""Unit tests of nps.noise.observers: map convention, counts, radii, ground grid, motion."""
 
 import numpy as np
 import pytest
 import yaml
 
-from nps.observers import ObserverError, ground_grid, hemisphere, observer_set
+from nps.noise.observers import ObserverError, ground_grid, hemisphere, observer_set
 
 
 def test_hemisphere_map_convention():
@@ -44,7 +44,7 @@ def test_point_set_places_observers_at_offsets_from_the_centre():
 def test_campaign_schema_accepts_point_and_sphere_sets():
     from pathlib import Path
 
-    from nps.config import validate
+    from nps.app.config import validate
 
     config = yaml.safe_load((Path(__file__).resolve().parents[2] / "config/config.yaml").read_text())
     config["observer_sets"]["mics"] = {"kind": "point", "positions_m": [[0.0, 0.0, -100.0]]}

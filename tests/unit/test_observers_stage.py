@@ -1,6 +1,6 @@
-"""Observer-set stage: set centre, directions of any set, artifact and CLI errors (nps.observers, nps.stages.observers)."""
+"""Observer-set stage: set centre, directions of any set, artifact and CLI errors (nps.noise.observers, nps.stages.observers)."""
 
-from nps.config import load_aircraft
+from nps.app.config import load_aircraft
 import numpy as np
 import pandas as pd
 import pytest
@@ -8,10 +8,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from nps.__main__ import main as nps_main
-from nps.observers import ObserverError, lift_rotors, observer_centre, rotor_roles, with_directions
+from nps.noise.observers import ObserverError, lift_rotors, observer_centre, rotor_roles, with_directions
 from nps.stages.observers import run as run_observers
-from nps.frames import observer_direction
-from nps.io import read_metadata, read_table, write_table
+from nps.core.frames import observer_direction
+from nps.app.io import read_metadata, read_table, write_table
 from tests.trim_tables import complete_trim
 
 

@@ -1,9 +1,9 @@
-"""Pegg's data-range check (nps.broadband.pegg_outside_range)."""
+"""Pegg's data-range check (nps.noise.broadband.pegg.pegg_outside_range)."""
 
 import numpy as np
 import pytest
 
-from nps.broadband import pegg_outside_range
+from nps.noise.broadband.pegg import pegg_outside_range
 
 
 def test_helicopter_main_rotor_is_inside_and_drone_rotor_is_outside():

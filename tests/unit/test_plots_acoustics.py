@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from nps.acoustics import TimeGrid
-from nps.signals import signals_table
-from nps.observers import hemisphere
+from nps.noise.acoustics import TimeGrid
+from nps.noise.signals import signals_table
+from nps.noise.observers import hemisphere
 from nps.plots.acoustics import group_signals, nearest_observer, pick_observers, pressure_histories
 
 GRID = TimeGrid(0.0, 0.2, 32)

@@ -1,11 +1,11 @@
-"""Hemisphere propagation (nps.propagation): spreading, absorption, Doppler, ground, symmetry."""
+"""Hemisphere propagation (nps.mission.propagation): spreading, absorption, Doppler, ground, symmetry."""
 
 import numpy as np
 import pytest
 from scipy.special import wofz
 
-from nps.atmosphere import absorption_db_per_m, isa
-from nps.propagation import (
+from nps.core.atmosphere import absorption_db_per_m, isa
+from nps.mission.propagation import (
     Ground,
     Hemisphere,
     PropagationError,
@@ -14,7 +14,7 @@ from nps.propagation import (
     propagate,
     spherical_reflection_coefficient,
 )
-from nps.spectra import third_octave_bands
+from nps.noise.spectra import third_octave_bands
 
 BANDS = np.arange(-20, 11)
 EL = np.linspace(-90.0, 0.0, 10)

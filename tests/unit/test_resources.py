@@ -1,4 +1,4 @@
-"""Memory estimates (nps.resources): bounds of the measured peaks, refusal with the estimate in the
+"""Memory estimates (nps.app.resources): bounds of the measured peaks, refusal with the estimate in the
 message (issue 14's n_psi 36000 × n_r 5000 and samples_per_rev 5e7), mem_mb for Snakemake."""
 
 import tracemalloc
@@ -6,12 +6,12 @@ import tracemalloc
 import pytest
 import yaml
 
-from nps import resources as res
-from nps.atmosphere import isa
-from nps.bet import DiskGrid, trim_rotor
-from nps.config import load_aircraft
-from nps.rotor import OperatingPoint, RotorGeometry
-from nps.trim import FlightCondition, trim_aircraft
+from nps.app import resources as res
+from nps.core.atmosphere import isa
+from nps.rotor.bet import DiskGrid, trim_rotor
+from nps.app.config import load_aircraft
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
+from nps.rotor.trim import FlightCondition, trim_aircraft
 
 # peak RSS above the imported interpreter (MB), helicopter seg3 main rotor (docs/models/validity.md)
 MEASURED_LOADS = [((90, 20), 11.2), ((360, 50), 21.2), ((720, 100), 40.3), ((1440, 100), 103.5), ((1440, 200), 135.5),
@@ -90,10 +90,10 @@ def test_bad_resolution_names_the_field():
 
 
 def test_table_column_counts_match_the_artifacts():
-    """nps.resources writes the disk and wake column counts out (no numba import in Snakemake); they must match."""
-    from nps import resources
-    from nps.bet import DISK_COLUMNS
-    from nps.wake import WAKE_COLUMNS
+    """nps.app.resources writes the disk and wake column counts out (no numba import in Snakemake); they must match."""
+    from nps.app import resources
+    from nps.rotor.bet import DISK_COLUMNS
+    from nps.wake.prescribed import WAKE_COLUMNS
 
     assert resources.DISK_TABLE_COLUMNS == len(DISK_COLUMNS)
     assert resources.WAKE_TABLE_COLUMNS == len(WAKE_COLUMNS)

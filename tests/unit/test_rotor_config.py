@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 import yaml
 
-from nps.airfoils import AirfoilError
-from nps.bet import DiskGrid
-from nps.config import ConfigError, load_aircraft
-from nps.control import RotorControl, solve_rotor
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor.airfoils import AirfoilError
+from nps.rotor.bet import DiskGrid
+from nps.app.config import ConfigError, load_aircraft
+from nps.rotor.control import RotorControl, solve_rotor
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 PROP = {
     "name": "prop", "role": "lift", "n_blades": 2, "radius_m": 0.12, "root_cutout_m": 0.015,

@@ -5,8 +5,8 @@ import dataclasses
 import numpy as np
 import pytest
 
-from nps import bet
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor import bet
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 G = RotorGeometry(name="r", n_blades=4, radius_m=2.0, chord_m=0.121, root_cutout_m=0.44, twist_rad=np.radians(-8.0),
                   thickness_ratio=0.12, lock_number=8.0, hinge_offset_m=0.29)
@@ -90,7 +90,7 @@ def test_prescribed_flap_enters_the_kinematics():
 def test_prescribed_flap_config_and_errors():
     """``prescribed_flap: [{n, cos_deg, sin_deg}]`` is read in degrees, accepted by the aircraft
     schema, and a bad entry is named before computing."""
-    from nps import config as cfg
+    from nps.app import config as cfg
 
     rotor = dict(name="r", role="lift", n_blades=4, radius_m=2.0, chord_m=0.121, root_cutout_m=0.44, twist_deg=-8.0,
                  thickness_ratio=0.12, omega_rad_s=109.0, rotation="ccw", hub_position_m=[0, 0, 1],

@@ -1,4 +1,4 @@
-"""Rotor test cases (nps.rotor_test, stage rotor_test, ``python -m nps rotor``): frames, microphones, bad
+"""Rotor test cases (nps.rig.case, stage rotor_test, ``python -m nps rotor``): frames, microphones, bad
 input, and the command against a closed-form hover case."""
 
 from __future__ import annotations
@@ -11,11 +11,11 @@ import pandas as pd
 import pytest
 import yaml
 
-from nps.bet import DiskGrid
+from nps.rotor.bet import DiskGrid
 from nps.cli.rotor import main as rotor_command
-from nps.config import ConfigError, load_rotor_test
-from nps.io import read_table
-from nps.rotor_test import (microphone_positions, microphone_table, rotor_for_test, rotor_test_trim, shaft_axis_flight,
+from nps.app.config import ConfigError, load_rotor_test
+from nps.app.io import read_table
+from nps.rig.case import (microphone_positions, microphone_table, rotor_for_test, rotor_test_trim, shaft_axis_flight,
                             t_to_g)
 
 REPO = Path(__file__).resolve().parents[2]

@@ -1,12 +1,12 @@
-"""Source-hemisphere product (nps.source_hemisphere): unabsorbed band levels at 10 R, round trip."""
+"""Source-hemisphere product (nps.mission.source_hemisphere): unabsorbed band levels at 10 R, round trip."""
 
 import numpy as np
 import pandas as pd
 import pytest
 
-from nps.observers import hemisphere
-from nps.source_hemisphere import COLUMNS, PRODUCT_BANDS, hemisphere_from_table, hemisphere_radius_m, source_hemisphere_table
-from nps.spectra import P_REF_PA
+from nps.noise.observers import hemisphere
+from nps.mission.source_hemisphere import COLUMNS, PRODUCT_BANDS, hemisphere_from_table, hemisphere_radius_m, source_hemisphere_table
+from nps.noise.spectra import P_REF_PA
 
 
 def _trim(velocity):

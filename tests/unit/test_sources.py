@@ -1,12 +1,12 @@
-"""Unit tests of nps.sources: placement, signs, analytic kinematics, force on the fluid."""
+"""Unit tests of nps.noise.sources: placement, signs, analytic kinematics, force on the fluid."""
 
 import numpy as np
 import pandas as pd
 import pytest
 
-from nps.acoustics import AcousticsError
-from nps.rotor import RotorMotion
-from nps.sources import ThicknessModel, periodic_dpsi, rotor_sources
+from nps.noise.acoustics import AcousticsError
+from nps.rotor.geometry import RotorMotion
+from nps.noise.sources import ThicknessModel, periodic_dpsi, rotor_sources
 
 
 def _motion(sign=1, speed=0.0):

@@ -1,11 +1,11 @@
-"""Unit tests of nps.spectra: scaling, Parseval, band edges, filters, harmonic bands."""
+"""Unit tests of nps.noise.spectra: scaling, Parseval, band edges, filters, harmonic bands."""
 
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from nps import spectra
+from nps.noise import spectra
 
 
 def _tone(amplitude, freq_hz, n, dt, phase=0.3):

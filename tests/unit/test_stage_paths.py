@@ -2,7 +2,7 @@
 
 from nps.cli import loads as loads_cli
 from nps.cli import trim as trim_cli
-from nps.config import load_aircraft, load_mission
+from nps.app.config import load_aircraft, load_mission
 from nps.stages import loads, trim
 
 

@@ -5,7 +5,7 @@ import pandas as pd
 import pytest
 
 from nps.stages.summary import stage_wall_times
-from nps.study import hotspot, segment_summary
+from nps.app.study import hotspot, segment_summary
 
 
 def test_hotspot_finds_maximum_and_breaks_ties_by_observer():

@@ -1,4 +1,4 @@
-"""Tone tables and narrowband spectra (nps.tones, stage nps.stages.tones, ``python -m nps tones``).
+"""Tone tables and narrowband spectra (nps.noise.tones, stage nps.stages.tones, ``python -m nps tones``).
 
 Synthetic signals with known amplitudes and phases on the aircraft's common grid (one revolution of the
 reference rotor): the reference rotor (exact DFT lines), a rotor turning exactly 3× faster (lines), and a
@@ -10,11 +10,11 @@ import pandas as pd
 import pytest
 
 from nps.__main__ import main as nps_main
-from nps.io import read_metadata, read_table, write_table
-from nps.signals import signals_table
-from nps.acoustics import TimeGrid
+from nps.app.io import read_metadata, read_table, write_table
+from nps.noise.signals import signals_table
+from nps.noise.acoustics import TimeGrid
 from nps.stages.tones import run
-from nps.tones import harmonic_amplitudes, loudest_observers, narrowband_table, tone_table
+from nps.noise.tones import harmonic_amplitudes, loudest_observers, narrowband_table, tone_table
 from tests.trim_tables import complete_trim
 
 OMEGA = {"main": 28.0, "aux": 84.0, "tail": 116.0}
@@ -189,7 +189,7 @@ def test_cli_round_trip_and_errors(tmp_path, capsys, repo_root):
 
 def test_campaign_output_options_and_their_errors(repo_root):
     """``outputs`` is optional (schema defaults); tone observer sets must name configured sets."""
-    from nps.config import ConfigError, load_campaign, read_yaml
+    from nps.app.config import ConfigError, load_campaign, read_yaml
 
     config = read_yaml(repo_root / "config/config.yaml")
     bare = load_campaign({k: v for k, v in config.items() if k != "outputs"}, root=repo_root)

@@ -7,9 +7,9 @@ r_gh, weight, fuselage drag), independently of the solver's own residual.
 import numpy as np
 import pytest
 
-from nps.atmosphere import isa
-from nps.config import load_campaign, read_yaml
-from nps.trim import G0_M_S2, FlightCondition, glauert_inflow, trim_aircraft, disk_flow_angle_deg
+from nps.core.atmosphere import isa
+from nps.app.config import load_campaign, read_yaml
+from nps.rotor.trim import G0_M_S2, FlightCondition, glauert_inflow, trim_aircraft, disk_flow_angle_deg
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""Validity envelope (nps.validity): every check on both sides of its limit, the issue-14 "worst"
+"""Validity envelope (nps.app.validity): every check on both sides of its limit, the issue-14 "worst"
 inputs caught, the bundled study inside the envelope, and enforce()'s error/warning semantics."""
 
 import copy
@@ -9,13 +9,13 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from nps import validity as v
-from nps.atmosphere import isa
-from nps.config import load_aircraft
-from nps.frames import rot_y
-from nps.observers import ground_grid, hemisphere, points
-from nps.trim import FlightCondition, trim_aircraft
-from nps.wake import WakeModel
+from nps.app import validity as v
+from nps.core.atmosphere import isa
+from nps.app.config import load_aircraft
+from nps.core.frames import rot_y
+from nps.noise.observers import ground_grid, hemisphere, points
+from nps.rotor.trim import FlightCondition, trim_aircraft
+from nps.wake.prescribed import WakeModel
 
 ATM = isa(0.0, 0.0, 70.0)
 
@@ -162,7 +162,7 @@ def test_enforce_refuses_with_one_line_and_records_when_allowed():
 
 
 def test_warnings_round_trip_through_the_artifact_metadata(tmp_path):
-    from nps.io import read_metadata, write_table
+    from nps.app.io import read_metadata, write_table
 
     warnings = v.enforce([v.check_lock_number(1000.0, "main")], True, "x")
     write_table(pd.DataFrame({"a": [1.0]}), tmp_path / "t.parquet", stage="trim", metadata={"validity_warnings": warnings})
@@ -173,7 +173,7 @@ def test_warnings_round_trip_through_the_artifact_metadata(tmp_path):
 def test_recorded_adds_a_metadata_key_only_for_allowed_findings(tmp_path):
     """A stage inside the envelope gets {} (its artifact unchanged), outside it refuses by default, and
     with the switch gets the warnings; the summary lists each distinct message once."""
-    from nps.io import write_table
+    from nps.app.io import write_table
     from nps.stages.summary import validity_warnings
 
     assert v.recorded([None], {}, "x") == {}

@@ -1,4 +1,4 @@
-"""Unit tests of nps.wake: Biot–Savart segment kernel, Beddoes geometry, frames."""
+"""Unit tests of nps.wake.prescribed: Biot–Savart segment kernel, Beddoes geometry, frames."""
 
 import math
 from dataclasses import replace
@@ -8,8 +8,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from nps import wake
-from nps.frames import rot_x, rot_y, rot_z
+from nps.wake import prescribed as wake
+from nps.core.frames import rot_x, rot_y, rot_z
 
 
 def _analytic_segment(x, h, a, b, gamma, rc, n=2.0):

@@ -5,15 +5,19 @@ import json
 import numpy as np
 import pytest
 
-from nps import bvi, vtk, wake
+from nps.wake import bvi
+
+from nps.app import vtk
+
+from nps.wake import prescribed as wake
 from nps.cli import loads as loads_cli
 from nps.cli import trim as trim_cli
 from nps.cli import wake as wake_cli
-from nps.io import read_metadata, read_table
+from nps.app.io import read_metadata, read_table
 
 
 def _read_legacy_vtk(path):
-    """Minimal reader of the binary legacy POLYDATA written by nps.vtk (independent parser)."""
+    """Minimal reader of the binary legacy POLYDATA written by nps.app.vtk (independent parser)."""
     data = path.read_bytes()
     pos = 0
 

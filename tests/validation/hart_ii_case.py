@@ -23,9 +23,17 @@ from pathlib import Path
 
 import numpy as np
 
-from nps import bet, bvi, freewake, interaction, wake
-from nps.airfoils import LinearAirfoil
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor import bet
+
+from nps.wake import bvi
+
+from nps.wake import free as freewake
+
+from nps.wake import interaction
+
+from nps.wake import prescribed as wake
+from nps.rotor.airfoils import LinearAirfoil
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 from multirotor_case import placed
 
@@ -324,7 +332,7 @@ def run_free(n_psi: int = 360, n_r: int = 50, free_model: freewake.FreeWakeModel
              wake_model: wake.WakeModel | None = None, case: Case | None = None,
              measured_flap: bool = True) -> HartFreeResult:
     """The baseline (or ``case`` with its measured blade motion, :func:`case_setup`) with the free
-    wake: :func:`nps.interaction.aircraft_bvi_loads` on a one-rotor aircraft (hub at the origin,
+    wake: :func:`nps.wake.interaction.aircraft_bvi_loads` on a one-rotor aircraft (hub at the origin,
     hub frame = G axes)."""
     import pandas as pd
 
@@ -357,6 +365,6 @@ def _degrees(harmonics) -> list[dict]:
 
 def piv_miss_distances_free(solution: freewake.FreeWakeSolution, case: str = "BL") -> list[tuple]:
     """As :func:`piv_miss_distances` for the relaxed free wake as the blade loads see it
-    (:func:`nps.freewake.wake_snapshot`: the Beddoes model's age grid and length, 1° over 4
+    (:func:`nps.wake.free.wake_snapshot`: the Beddoes model's age grid and length, 1° over 4
     revolutions, free and far wake, the last distortion kept beyond them)."""
     return _miss_distances(lambda psi: freewake.wake_snapshot(solution, solution.rotors[0].name, psi).nodes_m, case)

@@ -1,5 +1,5 @@
 """Synthetic aircraft for the rotor–rotor interaction tests: identical 3-bladed rotors placed
-freely, trimmed by ``nps.bet`` to a thrust coefficient, and the artifacts the ``wake`` job reads
+freely, trimmed by ``nps.rotor.bet`` to a thrust coefficient, and the artifacts the ``wake`` job reads
 (trim table, rotor configs, loads disk tables and summaries) built in memory.
 
 Rotor: R = 5 m, c = 0.35 m (σ = 0.067), −10° twist, root cutout 0.2 R, Lock number 6, hinge
@@ -11,8 +11,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from nps import bet
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor import bet
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 RADIUS_M, OMEGA, RHO, C0 = 5.0, 40.0, 1.225, 340.0
 

@@ -3,7 +3,7 @@
 Reference: tests/data/anopp2_compact_f1a (OpenMDAO/AcousticAnalogies.jl @ 8638416, ANOPP2 output).
 Case: B = 2 CROTOR propeller, 200–2200 rpm, hub translating at 5 m/s along the rotation axis,
 observer 30.48 m away in the rotor plane or 45° below, stationary or translating with the hub.
-Sources go through the public long-table API (``nps.acoustics.radiate``, the CLI's function) with
+Sources go through the public long-table API (``nps.noise.acoustics.radiate``, the CLI's function) with
 analytic velocities; accelerations, jerks and force rates come from its 6th-order differences.
 Criterion (the source project's): max |error| over the ANOPP2 window (≈ four blade passages) below
 1 % of the ANOPP2 peak-to-peak, for the loading (dipole) and the compact-monopole thickness. The
@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from nps.sources import radiate
+from nps.noise.sources import radiate
 
 STEPS_PER_REV = 256
 REVOLUTIONS = 3
@@ -34,7 +34,7 @@ def _sources(data_dir, nn, thickness):
         phi = 2 * np.pi * k / B + omega * tau
         for e in range(r.size):
             # dual compact, lines along the in-plane motion direction e_c = (−cos φ, −sin φ, 0). "dual": lines at 13 %/87 % chord with the element (ANOPP2's monopole) at the quarter chord, as
-            # nps.sources places them; "dual_centred": the same pair centred on the element
+            # nps.noise.sources places them; "dual_centred": the same pair centred on the element
             lines = [(0.0, 1.0, "loading")]
             if thickness.startswith("dual"):
                 centre = 0.0 if thickness == "dual_centred" else (0.25 - 0.5) * chord[e]
@@ -54,7 +54,7 @@ def _sources(data_dir, nn, thickness):
                     else:
                         frame["volume_m3"] = np.zeros_like(tau)
                 else:
-                    # force on the fluid ±ρ0 (A/D)(v·e_c) v dr (nps.sources, docs/models/acoustics.md)
+                    # force on the fluid ±ρ0 (A/D)(v·e_c) v dr (nps.noise.sources, docs/models/acoustics.md)
                     strength = sign * RHO0 * area[e] / ((0.87 - 0.13) * chord[e]) * dr[e] * (-vel[0] * np.cos(phi) - vel[1] * np.sin(phi))
                     frame.update(fx_N=strength * vel[0], fy_N=strength * vel[1], fz_N=strength * vel[2], volume_m3=np.zeros_like(tau))
                 frames.append(pd.DataFrame(frame))
@@ -95,7 +95,7 @@ def _check_dual_compact(data_dir, cases):
     * pair centred on the element (where ANOPP2's monopole sits): max |difference| < 1 % of the
       ANOPP2 peak-to-peak, 2.5 % at 200 rpm (there the axial flight speed is 0.2 of the tip speed and
       the O(V/U) term of a pair separated across the helical path shows). Measured ≤ 0.98 %, 2.4 %.
-    * as nps.sources places it (13 %/87 % chord, element at 25 %): the box centre lies a quarter
+    * as nps.noise.sources places it (13 %/87 % chord, element at 25 %): the box centre lies a quarter
       chord behind the monopole, a pure time shift of ≈ c/(4U); peak-to-peak within 3 % (measured
       0.997–1.026) and max |difference| < 9 % of peak-to-peak (measured 4.7–8.1 %, the shift).
     The loading is unaffected. The thesis' ±ρ0c²·t·dr lines were 1168× (200 rpm) … 4.5× (2200 rpm) the

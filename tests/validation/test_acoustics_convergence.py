@@ -2,9 +2,9 @@
 changes OASPL by less than 0.05 dB on the study cases.
 
 Chain: config/aircraft/<aircraft>.yaml and the seg3 speeds of config/missions/demo.yaml (6° descent,
-the BVI segment, 25.7 m/s), ISA sea level → nps.trim.trim_aircraft → nps.bet.trim_rotor on
+the BVI segment, 25.7 m/s), ISA sea level → nps.rotor.trim.trim_aircraft → nps.rotor.bet.trim_rotor on
 n_psi = 180 and 360 azimuths (the source steps of the acoustic lines), n_r = 30 →
-nps.sources.radiate_rotor (dual-compact thickness + loading, every rotor of the aircraft summed
+nps.noise.sources.radiate_rotor (dual-compact thickness + loading, every rotor of the aircraft summed
 on the main rotor's grid of 1024 samples per revolution, the campaign default) → OASPL (dB re
 20 µPa) of the total signal at 16 observers of the 10 R hemisphere about the first rotor's hub,
 moving with the aircraft (elevation 0°, −30°, −60°, −90° × azimuth 0°, 90°, 180°, 270°).
@@ -18,12 +18,16 @@ Measured max |ΔOASPL| (180 → 360): helicopter 2.4e-5 dB, tandem 3.8e-5, coaxi
 import numpy as np
 import pytest
 
-from nps import acoustics, bet, sources
-from nps.atmosphere import isa
-from nps.config import load_aircraft, load_mission
-from nps.observers import hemisphere
-from nps.rotor import OperatingPoint, RotorGeometry
-from nps.trim import FlightCondition, trim_aircraft
+from nps.noise import acoustics
+
+from nps.rotor import bet
+
+from nps.noise import sources
+from nps.core.atmosphere import isa
+from nps.app.config import load_aircraft, load_mission
+from nps.noise.observers import hemisphere
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
+from nps.rotor.trim import FlightCondition, trim_aircraft
 
 SAMPLES_PER_REV = 1024
 N_R = 30

@@ -10,7 +10,7 @@ Both through the long-table API (6th-order derivatives from the positions and fo
 import numpy as np
 import pandas as pd
 
-from nps.sources import radiate
+from nps.noise.sources import radiate
 
 C0 = 340.0
 

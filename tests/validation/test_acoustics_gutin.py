@@ -1,6 +1,6 @@
 """Hovering ring sources against Gutin's closed-form harmonics, and hover azimuthal symmetry.
 
-Sources are built by ``nps.sources.rotor_sources`` from a one-station disk table (thrust and
+Sources are built by ``nps.noise.sources.rotor_sources`` from a one-station disk table (thrust and
 torque at one radius) and radiated by the periodic (one blade + symmetry) path.
 * tests/data/gutin (closed form, B = 2, Re = 4 m, Ω = 40.8 rad/s, r = 500 m): loading (Gutin)
   and compact-monopole thickness harmonics m = 1…4 within 0.1 dB at θ = 30…150°.
@@ -15,10 +15,10 @@ import numpy as np
 import pandas as pd
 from scipy.special import jv
 
-from nps.acoustics import Observers, TimeGrid
-from nps.sources import radiate_rotor
-from nps.observers import hemisphere
-from nps.sources import ThicknessModel
+from nps.noise.acoustics import Observers, TimeGrid
+from nps.noise.sources import radiate_rotor
+from nps.noise.observers import hemisphere
+from nps.noise.sources import ThicknessModel
 
 
 def _hover_row(n_blades, omega, c0, rho0):

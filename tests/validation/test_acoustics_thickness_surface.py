@@ -31,9 +31,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from nps.acoustics import Observers, TimeGrid, radiate_arrays
-from nps.rotor import RotorMotion
-from nps.sources import ThicknessModel, rotor_sources
+from nps.noise.acoustics import Observers, TimeGrid, radiate_arrays
+from nps.rotor.geometry import RotorMotion
+from nps.noise.sources import ThicknessModel, rotor_sources
 
 RADIUS, CHORD, B, C0, RHO0 = 1.045, 0.0762, 2, 340.294, 1.225
 ROOT = 0.2 * RADIUS
@@ -56,7 +56,7 @@ def _panels(n_chord, n_span):
     rr, xx = np.meshgrid(r_mid, x_mid, indexing="ij")
     # outward n dS = (0, y_t'(x), ±1) dr d(offset) on both sides: ∫ v_n dS = Ω r dr ∫ y_t' dx
     flux = (rr * np.diff(r_edge)[:, None] * np.diff(_half_thickness(x_edge))[None, :] * CHORD).ravel()
-    offset = (0.25 - xx) * CHORD  # pitch axis at the quarter chord, as in nps.sources
+    offset = (0.25 - xx) * CHORD  # pitch axis at the quarter chord, as in nps.noise.sources
     points = [np.stack([rr, offset, side * _half_thickness(xx) * CHORD], axis=-1).reshape(-1, 3) for side in (1.0, -1.0)]
     return np.concatenate(points), np.concatenate([flux, flux])
 
@@ -90,7 +90,7 @@ def full_surface_pressure(mach_tip, observer_m, n_chord=24, n_span=60, n_tau=102
 
 
 def compact_pressure(mach_tip, observer_m, kind, n_r=50, n_psi=256):
-    """Thickness pressure (Pa) from nps.sources + nps.acoustics (periodic path), same grid."""
+    """Thickness pressure (Pa) from nps.noise.sources + nps.noise.acoustics (periodic path), same grid."""
     omega = mach_tip * C0 / RADIUS
     r_mid = ROOT + (np.arange(n_r) + 0.5) * (RADIUS - ROOT) / n_r
     psi = 2 * np.pi * np.arange(n_psi) / n_psi

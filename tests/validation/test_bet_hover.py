@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from nps.bet import Controls, DiskGrid, rotor_loads, trim_rotor
-from nps.airfoils import LinearAirfoil
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor.bet import Controls, DiskGrid, rotor_loads, trim_rotor
+from nps.rotor.airfoils import LinearAirfoil
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 R, OMEGA, RHO = 7.62, 28.0, 1.225
 

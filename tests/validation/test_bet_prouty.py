@@ -13,9 +13,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from nps.bet import Controls, DiskGrid, rotor_loads
+from nps.rotor.bet import Controls, DiskGrid, rotor_loads
 from nps.plots.disk import disk_grid, disk_plot
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 
 @pytest.fixture(scope="module")

@@ -3,7 +3,7 @@
 Case: Pettingill et al. (AIAA 2021-1928), NASA's 4-bladed ideally twisted rotor in hover, figures
 22b, 23c and 24b; per-station inputs and BPM.jl's component spectra from
 tests/data/bpm/itr (README there). The stations are written into a loads disk table (ψ × r, every
-azimuth alike) and go through :func:`nps.broadband_rotor.rotor_broadband_msp`, the function the
+azimuth alike) and go through :func:`nps.noise.broadband.rotor.rotor_broadband_msp`, the function the
 pipeline calls, with the reference's conventions: section speed √(V² + (Ωr)²) (U_T = Ωr, U_P = V,
 no induced velocity), no Doppler shift (``doppler=False``), observer 2.27 m from the hub, 35° below
 the rotor plane, on the wake side; tripped flags per station; the LBL-VS comparison runs with the
@@ -11,7 +11,7 @@ stations BPM.jl computed LBL-VS on as untripped (NPS radiates LBL-VS from untrip
 
 Narrowband conversion: the reference gives 20 Hz narrowband levels from 1/3-octave levels,
 L_nb = L_{1/3} + 10 log10(20 Hz / Δf) (energy spread uniformly over the band). NPS bands are the
-exact base-10 bands of nps.spectra, Δf = f_m (10^{1/20} − 10^{−1/20}); the reference used the
+exact base-10 bands of nps.noise.spectra, Δf = f_m (10^{1/20} − 10^{−1/20}); the reference used the
 approximate band edges of AcousticMetrics.jl, whose widths differ from the exact ones by up to
 +1.3/−1.2 dB at 3.15/4 kHz and 25/31.5 kHz: that alternation is most of the remaining error.
 
@@ -28,10 +28,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from nps import bpm
-from nps.broadband_rotor import BladeEdge, rotor_broadband_msp
-from nps.rotor import OperatingPoint, RotorGeometry
-from nps.spectra import P_REF_PA, third_octave_bands
+from nps.noise.broadband import bpm
+from nps.noise.broadband.rotor import BladeEdge, rotor_broadband_msp
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
+from nps.noise.spectra import P_REF_PA, third_octave_bands
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "bpm" / "itr"
 BANDS = np.arange(-10, 17)  # 100 Hz ... 40 kHz (the reference's 27 bands)

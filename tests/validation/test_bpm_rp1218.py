@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from nps import bpm
+from nps.noise.broadband import bpm
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "bpm" / "rp1218"
 MEDIUM = bpm.Medium(speed_of_sound_mps=340.46, kinematic_viscosity_m2_s=1.4529e-5)

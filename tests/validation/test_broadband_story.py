@@ -17,11 +17,17 @@ and > 10x the gain ahead (< 0.1 dB); A-weighted gain below > 20 dB, ahead < 2 dB
 import numpy as np
 import pandas as pd
 
-from nps import acoustics, bet, metrics, sources
-from nps.atmosphere import isa
-from nps.config import load_aircraft, load_mission
-from nps.rotor import OperatingPoint, RotorGeometry
-from nps.trim import FlightCondition, trim_aircraft
+from nps.noise import acoustics
+
+from nps.rotor import bet
+
+from nps.noise import metrics
+
+from nps.noise import sources
+from nps.core.atmosphere import isa
+from nps.app.config import load_aircraft, load_mission
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
+from nps.rotor.trim import FlightCondition, trim_aircraft
 
 GRID = bet.DiskGrid(120, 30)
 SAMPLES_PER_REV = 1024

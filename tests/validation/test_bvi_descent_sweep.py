@@ -2,7 +2,7 @@
 6° descent, little in level flight, gone again by ≈ 8°).
 
 Rotor: the bundled helicopter main rotor (config/aircraft/helicopter.yaml) at Table 5.2's
-μ = 0.23 and C_T = 0.0095, trimmed by nps.bet (zero hub moments, so the tip-path plane is the
+μ = 0.23 and C_T = 0.0095, trimmed by nps.rotor.bet (zero hub moments, so the tip-path plane is the
 shaft plane), BVI loads with the model defaults (360 × 30 disk, 3-revolution wake).
 
 Disk attitude (trim-consistent, not the thesis' μ_z = μ tan γ, which leaves the disk parallel
@@ -31,7 +31,7 @@ structure the fall beyond the peak is slower (8°: −1.1 dB): the diffuse vorti
 sheets lose less of their induced velocity as the miss distance grows, so only 10° is "small".
 
 The free-vortex wake (issue 12; ``wake.model: free``, one-rotor aircraft through
-:func:`nps.interaction.aircraft_bvi_loads`, default ``FreeWakeModel``, the same trims and the
+:func:`nps.wake.interaction.aircraft_bvi_loads`, default ``FreeWakeModel``, the same trims and the
 Beddoes model above as its initial guess and blade-load evaluation) gives the same regime with a
 sharper fall beyond the peak: 0°: 0.05, 3°: 0.53, 4°: 0.80, 5°: 0.98, 6°: 1.00, 7°: 0.87,
 8°: 0.60, 10°: 0.11 (peak intensity +0.2 dB against Beddoes'; 12–19 relaxation iterations). The
@@ -48,9 +48,12 @@ import pandas as pd
 import pytest
 
 from multirotor_case import placed
-from nps import bet, bvi, interaction, wake
-from nps.config import load_aircraft
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor import bet
+from nps.wake import bvi
+from nps.wake import interaction
+from nps.wake import prescribed as wake
+from nps.app.config import load_aircraft
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 ANGLES_DEG = (0, 3, 4, 5, 6, 7, 8, 10)
 RHO, C0, OMEGA, MU, CT = 1.225, 340.3, 28.0, 0.23, 0.0095

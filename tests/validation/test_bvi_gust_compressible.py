@@ -2,7 +2,7 @@
 
 NPS's lifting-line response to a convected (parallel) gust of reduced frequency k = ω b / U
 (b the half-chord) at Mach number M is the quasi-steady Prandtl–Glauert lift (the BET's c_l
-carries 1/β) times the gust filter |S(k/β²)| of :func:`nps.bvi.gust_transfer` (β² = 1 − M²;
+carries 1/β) times the gust filter |S(k/β²)| of :func:`nps.wake.bvi.gust_transfer` (β² = 1 − M²;
 docs/models/wake_bvi.md, "Unsteady section response"), i.e. a lift per span
 L = 2π ρ U b w |S(k/β²)| / β. References, with σ = M k / β²:
 
@@ -29,7 +29,7 @@ import numpy as np
 import pytest
 from scipy import special
 
-from nps import bvi
+from nps.wake import bvi
 
 MACHS = (0.47, 0.63)
 

@@ -25,7 +25,8 @@ import numpy as np
 import pytest
 
 import hart_ii_case as h
-from nps import bvi, wake
+from nps.wake import bvi
+from nps.wake import prescribed as wake
 
 
 @pytest.fixture(scope="module")

@@ -1,32 +1,32 @@
 """Hemisphere propagation against direct F1A with the moving aircraft and fixed ground observers.
 
 The helicopter in seg2 (level flight, 40.5 m/s) is trimmed, its blade loads computed and its
-thickness + loading noise radiated (nps.acoustics, compact F1A) twice: (1) to a 20 R hemisphere
+thickness + loading noise radiated (nps.noise.acoustics, compact F1A) twice: (1) to a 20 R hemisphere
 moving with the aircraft, turned into the source-hemisphere product (referred to 10 R) and propagated
-by nps.propagation to three fixed ground receivers; (2) directly to the same fixed receivers
+by nps.mission.propagation to three fixed ground receivers; (2) directly to the same fixed receivers
 with the moving rotors (non-periodic F1A: every blade over the source times the window needs,
 Doppler and retarded times from the solver). Without ground and absorption the two OASPLs over
 a 4-revolution window agree within 1.5 dB (acceptance of issue 15); measured 0.2, 0.1 and 0.6 dB
 (with the product taken on the 10 R hemisphere itself: 1.1, 0.4 and 1.8 dB, see
-nps.source_hemisphere). Slow (~1 min).
+nps.mission.source_hemisphere). Slow (~1 min).
 """
 
 import numpy as np
 import pytest
 
-from nps.acoustics import LOADING, THICKNESS, Observers, TimeGrid
-from nps.atmosphere import isa
-from nps.bet import DiskGrid, trim_rotor
-from nps.config import load_aircraft
-from nps.metrics import rotor_solidities
-from nps.observers import hemisphere
-from nps.propagation import Ground, Trajectory, propagate
-from nps.rotor import OperatingPoint, RotorGeometry
-from nps.signals import signals_table
-from nps.sources import ThicknessModel, common_grid, radiate_rotor
-from nps.source_hemisphere import hemisphere_from_table, source_hemisphere_table
-from nps.spectra import P_REF_PA
-from nps.trim import FlightCondition, trim_aircraft, trim_row
+from nps.noise.acoustics import LOADING, THICKNESS, Observers, TimeGrid
+from nps.core.atmosphere import isa
+from nps.rotor.bet import DiskGrid, trim_rotor
+from nps.app.config import load_aircraft
+from nps.noise.metrics import rotor_solidities
+from nps.noise.observers import hemisphere
+from nps.mission.propagation import Ground, Trajectory, propagate
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
+from nps.noise.signals import signals_table
+from nps.noise.sources import ThicknessModel, common_grid, radiate_rotor
+from nps.mission.source_hemisphere import hemisphere_from_table, source_hemisphere_table
+from nps.noise.spectra import P_REF_PA
+from nps.rotor.trim import FlightCondition, trim_aircraft, trim_row
 
 HEIGHT_M = 150.0
 N_REV = 4

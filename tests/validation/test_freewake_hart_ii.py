@@ -26,7 +26,8 @@ import numpy as np
 import pytest
 
 import hart_ii_case as h
-from nps import freewake, wake
+from nps.wake import free as freewake
+from nps.wake import prescribed as wake
 
 pytestmark = pytest.mark.slow
 

@@ -8,7 +8,7 @@ equations as given by Leishman, Principles of Helicopter Aerodynamics, ch. 10):
 These are fits to smoke-flow measurements, so the free wake (which knows none of them) is an
 independent check. Rotor inside Landgrebe's test range: B = 4, blade aspect ratio 13.9
 (c = R/13.9, σ = 0.092), θ_tw = −8°, C_T = 0.005 (k1 = −0.0117, k2 = −0.0650 per rad),
-trimmed by nps.bet; z measured from the release point (tip-path plane). Wake: 3 free + 1 far
+trimmed by nps.rotor.bet; z measured from the release point (tip-path plane). Wake: 3 free + 1 far
 revolutions and the semi-infinite continuation (continuation_radii = 50, off by default),
 relaxed to a node change < 0.1 % R (the default 1 % stops at 5 iterations, with the
 pre-passage rise 0.005 R short of its converged value).
@@ -35,8 +35,14 @@ needs cores thinner than the relaxation converges with (docs, "Landgrebe hover")
 import numpy as np
 import pytest
 
-from nps import bet, bvi, freewake, wake
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor import bet
+
+from nps.wake import bvi
+
+from nps.wake import free as freewake
+
+from nps.wake import prescribed as wake
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 B, CT, TWIST_DEG = 4, 0.005, -8.0
 R, OMEGA = 1.0, 100.0

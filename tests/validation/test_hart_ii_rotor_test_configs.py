@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import hart_ii_case as h
-from nps.config import load_rotor_test
+from nps.app.config import load_rotor_test
 
 
 @pytest.mark.parametrize("name", ["BL", "MN", "MV"])

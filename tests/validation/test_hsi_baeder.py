@@ -10,7 +10,7 @@ chord is not compact in observer time: at M = 0.95 it overpredicts the negative 
 the NACA 0012 volume is spread over 12 chordwise lines (cosine spacing): 30 × 12 lines per
 blade, 8192 source times and 1024 observer samples per revolution (peak and maximum shear slope
 converged to 1 % and 3 % against 60 × 24 lines, 32768 / 4096 samples). To be replaced by
-``nps.acoustics`` once that module exists.
+``nps.noise.acoustics`` once that module exists.
 
 Acceptance (issue 7): M_r = M_tip and r = r0 for this observer (1e-6); after amplification
 and shear the signal is single-valued at M_tip 0.88 and 0.90 and multivalued, hence
@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from nps import hsi
+from nps.noise import hsi
 from nps.plots.hsi import plot_intermediate_grid
 
 R, CHORD, B = 1.045, 0.0762, 2

@@ -12,7 +12,7 @@ within 1 %; measured: below 1e-4 for 4096 samples per period.
 import numpy as np
 import pytest
 
-from nps.hsi import fit_shocks
+from nps.noise.hsi import fit_shocks
 
 A3, PHASE = 0.5, 1.0  # p0 = sin 2πt + A3 sin(6πt + PHASE), period 1: two compression regions
 

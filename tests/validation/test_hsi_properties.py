@@ -13,7 +13,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from nps.hsi import fit_shocks
+from nps.noise.hsi import fit_shocks
 
 N = 512
 

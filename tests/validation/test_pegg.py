@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from nps import broadband
+from nps.noise.broadband import pegg as broadband
 
 TABLE = pd.read_csv(Path(__file__).resolve().parents[1] / "data" / "pegg" / "pegg_broadband_spectrum_psuwopwop.csv", comment="#")
 

@@ -25,7 +25,10 @@ import numpy as np
 import pytest
 
 import multirotor_case as mc
-from nps import bvi, freewake, interaction, wake
+from nps.wake import bvi
+from nps.wake import free as freewake
+from nps.wake import interaction
+from nps.wake import prescribed as wake
 
 BEDDOES = wake.WakeModel(steps_per_rev=72, revolutions=3.0)
 

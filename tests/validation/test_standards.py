@@ -6,8 +6,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from nps import metrics, spectra
-from nps.atmosphere import absorption_db_per_m
+from nps.noise import metrics
+
+from nps.noise import spectra
+from nps.core.atmosphere import absorption_db_per_m
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "standards"
 

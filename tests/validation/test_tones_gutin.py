@@ -1,8 +1,8 @@
-"""Tone table (nps.tones.tone_table) of a hovering ring rotor against Gutin's closed form.
+"""Tone table (nps.noise.tones.tone_table) of a hovering ring rotor against Gutin's closed form.
 
 Setup of tests/validation/test_acoustics_gutin.py (issue-5 case): B = 4 ring at R_e = 5 m, Ω = 40 rad/s,
 T = 40 kN, Q = 30 kN·m, observers at r = 200 R_e/0.8, θ = 10…170° from the thrust axis, signals radiated by
-``nps.sources.radiate_rotor`` on one revolution (512 samples) and written as a signal table.
+``nps.noise.sources.radiate_rotor`` on one revolution (512 samples) and written as a signal table.
 Gutin: p_m,rms = mBΩ/(2√2 π c r) |−T cos θ + Q c/(Ω R_e²)| |J_mB(mBΩ R_e sin θ / c)|.
 
 * BPF1 and BPF2 SPL of the rotor's rows and of the total within 0.1 dB (the acoustics test's tolerance)
@@ -15,10 +15,10 @@ import numpy as np
 import pandas as pd
 from scipy.special import jv
 
-from nps.acoustics import Observers, TimeGrid
-from nps.signals import signals_table
-from nps.sources import radiate_rotor
-from nps.tones import tone_table
+from nps.noise.acoustics import Observers, TimeGrid
+from nps.noise.signals import signals_table
+from nps.noise.sources import radiate_rotor
+from nps.noise.tones import tone_table
 from tests.trim_tables import complete_trim
 from tests.validation.test_acoustics_gutin import _hover_row, _ring_disk
 

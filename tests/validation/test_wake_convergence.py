@@ -1,7 +1,7 @@
 """Convergence of the BVI increment under refinement (issue item 5; docs/models/wake_bvi.md).
 
 Case: thesis Table 5.2 rotor (bundled helicopter main rotor, μ_x = 0.23, 6° descent,
-C_T = 0.0095) trimmed by nps.bet on 360 × 50 and 720 × 50 disks; BVI increments with the
+C_T = 0.0095) trimmed by nps.rotor.bet on 360 × 50 and 720 × 50 disks; BVI increments with the
 model defaults and the wake segment equal to the disk step (1° vs 0.5°, 4 revolutions).
 
 Criteria (issue): the peak |ΔU_P| on the disk changes by < 5 % and no interaction band moves
@@ -15,9 +15,13 @@ import numpy as np
 import pytest
 from scipy.signal import find_peaks
 
-from nps import bet, bvi, wake
-from nps.config import load_aircraft
-from nps.rotor import OperatingPoint, RotorGeometry
+from nps.rotor import bet
+
+from nps.wake import bvi
+
+from nps.wake import prescribed as wake
+from nps.app.config import load_aircraft
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 
 def _increments(n_psi: int, geometry: RotorGeometry):

@@ -16,25 +16,10 @@ import pyarrow.parquet as pq
 import pytest
 import yaml
 
+from campaigns import TINY
+
 REPO = Path(__file__).resolve().parents[2]
 
-TINY = {
-    # 2 wake revolutions are short of the ~2.5 the seg3 descent needs (docs/models/validity.md): run with the
-    # switch, the warning recorded in the wake and BVI tables' metadata and in the summary CSV
-    "campaign": {"mission": "demo", "aircraft": ["helicopter", "coaxial"], "segments": ["seg2", "seg3"],
-                 "allow_outside_validity": True},
-    "observer_sets": {
-        "hemisphere": {"kind": "hemisphere", "radius_R": 10.0, "n_elevation": 4, "n_azimuth": 8, "moving": True},
-        "hsi": {"kind": "points_ahead", "radius_R": 10.0, "elevations_deg": [0.0, -26.0], "moving": True, "segments": ["seg2"]},
-    },
-    "resolution": {"n_psi": 72, "n_r": 16, "wake_revolutions": 2, "samples_per_rev": 256},
-    "models": {"bvi": True, "hsi": True, "broadband": True, "absorption": True, "thickness": "dual_compact",
-               "bvi_segments": ["seg3"]},
-    "figures": {"disk_segments": ["seg3"], "map_segments": ["seg2", "seg3"], "bvi_map_segments": ["seg3"], "hsi_segments": ["seg2"]},
-    "wake": {"A": 0.5, "B": 1.0, "C": 1.1, "D": 0.85, "core_radius_chords": 0.5, "core_growth": False},
-    "acoustics": {"dual_compact_chord_fractions": [0.13, 0.87], "bvispl_harmonics": [7, 40]},
-    "atmosphere": {"altitude_m": 0.0, "isa_delta_K": 0.0, "relative_humidity_pct": 70.0},
-}
 
 
 def _snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
@@ -83,8 +68,7 @@ def test_campaign_artifacts_are_finite(campaign_dir):
 def test_campaign_reproduces_the_committed_manifest(campaign_dir):
     """Every artifact of the tiny campaign has the content digest recorded in tests/data/manifests (made before
     the issue-16 restructuring; only a deliberate physics change may regenerate it)."""
-    sys.path.insert(0, str(REPO / "benchmarks"))
-    from artifact_digests import compare, digests, read_manifest
+    from nps.app.digests import compare, digests, read_manifest
 
     results = campaign_dir / "results"
     manifest = read_manifest(REPO / "tests/data/manifests/tiny_campaign.sha256")

@@ -11,7 +11,7 @@ import pandas as pd
 import pytest
 
 from nps.cli.rotor import main as rotor_command
-from nps.io import read_table
+from nps.app.io import read_table
 
 REPO = Path(__file__).resolve().parents[2]
 

@@ -4,10 +4,10 @@ import sys
 
 from pathlib import Path
 
-from nps.config import ConfigError, load_campaign, load_rotor_test
+from nps.app.config import ConfigError, load_campaign, load_rotor_test
 from nps.stages.code import stage_digest
-from nps.metrics import rotor_solidities
-import nps.resources as nps_resources
+from nps.noise.metrics import rotor_solidities
+import nps.app.resources as nps_resources
 
 
 
@@ -18,7 +18,7 @@ try:
 except ConfigError as error:
     sys.stderr.write(f"NPS configuration error: {error}\n")
     raise SystemExit(1)
-# campaign switch: findings outside the models' validity envelope become warnings (nps.validity)
+# campaign switch: findings outside the models' validity envelope become warnings (nps.app.validity)
 ALLOW_OUTSIDE_VALIDITY = config["campaign"].get("allow_outside_validity", False)
 RESULTS = "results"
 ALL_TARGETS = []
@@ -138,7 +138,7 @@ def rotor_figure_inputs(wildcards):
     return inputs
 
 
-# ---- Cluster requests of every job (nps.resources): threads, and mem_mb / runtime from the resolution ----
+# ---- Cluster requests of every job (nps.app.resources): threads, and mem_mb / runtime from the resolution ----
 # ---- in config, the job's rotors and observer set, growing with the attempt (profiles/slurm retries). ----
 def _job_load(wildcards):
     """(observers, rotors, HSI signals read) of a job; jobs without an observer set read the hemisphere's."""
@@ -202,7 +202,7 @@ def footprint_inputs(wildcards):
     return {f"hemisphere_{s}": f"{RESULTS}/{wildcards.aircraft}/{s}/source_hemisphere.parquet" for s in profile_segments()}
 
 
-# used by tests.smk: the rotor test cases of config/tests/ (nps.rotor_test), validated before any job
+# used by tests.smk: the rotor test cases of config/tests/ (nps.rig.case), validated before any job
 TESTS_DIR = Path("config/tests")
 TEST_RESULTS = f"{RESULTS}/tests/{{test}}"
 TEST_SCRIPT = "../scripts/rotor_test_stage.py"
@@ -234,4 +234,4 @@ def test_targets(test):
     return out
 
 
-# ---- resources: mem_mb of the jobs whose arrays scale with the resolution (nps.resources) ----
+# ---- resources: mem_mb of the jobs whose arrays scale with the resolution (nps.app.resources) ----

@@ -1,4 +1,4 @@
-# Rotor test cases (config/tests/*.yaml, nps.rotor_test): an isolated rotor in hover or in a wind tunnel with
+# Rotor test cases (config/tests/*.yaml, nps.rig.case): an isolated rotor in hover or in a wind tunnel with
 # hub-fixed microphones. The set-up (stage rotor_test) writes the trim row and the microphone table; the study's
 # own stages then run: loads, wake (+ BVI loads) where models.bvi, acoustics, metrics, and the BVISPL carpet of
 # plane microphone groups where metrics.carpet. Targets: `snakemake -j2 rotor_tests` (every test), or one test

@@ -9,7 +9,7 @@ rule trim:
         speeds=lambda wildcards: CAMPAIGN.segment(wildcards.segment)["aircraft"][wildcards.aircraft],
         atmosphere=config["atmosphere"],
         allow_outside_validity=ALLOW_OUTSIDE_VALIDITY,
-        # disk resolution of the loads that solve the speeds of rpm-controlled rotors (nps.control.trim_rotor_speeds)
+        # disk resolution of the loads that solve the speeds of rpm-controlled rotors (nps.rotor.control.trim_rotor_speeds)
         n_psi=config["resolution"]["n_psi"],
         n_r=config["resolution"]["n_r"],
         code=code("trim"),

@@ -1,0 +1,566 @@
+"""Configuration files: loading, JSON-schema validation and cross-reference checks.
+
+Schemas live in ``nps/app/schemas/`` (config, aircraft, mission) with the defaults of optional fields. Every problem is reported
+before any computation as a :class:`ConfigError` whose lines read
+``<file>: <field path>: <what was expected>``.
+"""
+
+from __future__ import annotations
+
+import difflib
+import functools
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Iterator
+
+import jsonschema
+import yaml
+
+from nps.rotor.airfoils import AirfoilError
+from nps.rotor.blade import BladeError
+from nps.rotor.geometry import RotorGeometry
+
+SCHEMA_DIR = Path(__file__).resolve().parent / "schemas"
+
+
+class ConfigError(ValueError):
+    """A configuration file is invalid; the message names file, field and expectation."""
+
+
+def _field_path(parts) -> str:
+    text = ""
+    for part in parts:
+        text += f"[{part}]" if isinstance(part, int) else (f".{part}" if text else str(part))
+    return text or "<top level>"
+
+
+# name patterns of the schemas, in words: names become file names and workflow wildcards
+PATTERN_WORDS = {
+    "^[a-z][a-z0-9_]*$": "a lower-case letter followed by lower-case letters, digits or '_' (the name becomes "
+                         "part of file names and of the workflow's wildcards)",
+    "^seg[0-9]+$": "'seg' followed by digits, e.g. seg3 (the id becomes a directory name and a workflow wildcard)",
+}
+
+
+def _describe(error: jsonschema.ValidationError) -> tuple[str, str]:
+    """(field path, expectation) for one schema error, in plain words."""
+    path = list(error.absolute_path)
+    kind = error.validator
+    value = error.validator_value
+    if "propertyNames" in error.absolute_schema_path:  # a key of the mapping at ``path`` is refused
+        if kind == "enum":
+            return _field_path(path + [error.instance]), _unknown_key(error.instance, value)
+        if kind == "pattern":
+            return _field_path(path + [error.instance]), f"expected a name made of {PATTERN_WORDS.get(value, repr(value))}"
+    if kind == "additionalProperties":
+        allowed = sorted(error.schema.get("properties", {}))
+        extra = sorted(set(error.instance) - set(allowed))
+        return _field_path(path + [extra[0]] if extra else path), _unknown_key(extra[0] if extra else "", allowed)
+    if kind == "required":
+        missing = [name for name in value if name not in error.instance]
+        return _field_path(path + missing[:1]), "required field is missing"
+    if kind == "type":
+        return _field_path(path), f"expected {value}, got {type(error.instance).__name__} {error.instance!r}"
+    if kind in ("exclusiveMinimum", "minimum", "exclusiveMaximum", "maximum"):
+        words = {"exclusiveMinimum": "> ", "minimum": ">= ", "exclusiveMaximum": "< ", "maximum": "<= "}[kind]
+        return _field_path(path), f"expected a number {words}{value}, got {error.instance!r}"
+    if kind == "enum":
+        return _field_path(path), f"expected one of {value}, got {error.instance!r}"
+    if kind == "pattern":
+        return _field_path(path), f"expected {PATTERN_WORDS.get(value, f'text matching {value!r}')}, got {error.instance!r}"
+    if kind in ("minItems", "maxItems"):
+        return _field_path(path), f"expected a list with {kind[:3]}imum {value} item(s), got {len(error.instance)}"
+    return _field_path(path), error.message
+
+
+def _unknown_key(key: str, allowed) -> str:
+    """Expectation text for an unknown key, with the closest allowed key when it looks like a typo."""
+    close = difflib.get_close_matches(str(key), [str(a) for a in allowed], n=1, cutoff=0.75)
+    hint = f"did you mean '{close[0]}'? " if close else "typo? "
+    return f"unknown key ({hint}allowed keys here: {', '.join(allowed)})"
+
+
+def _schema_problems(validator: jsonschema.protocols.Validator, data: Any) -> list[tuple[str, str]]:
+    """(field, expectation) of every schema error; a required key missing because of a typo is named
+    once, by the unknown key that suggests it (``n_azimut``: did you mean 'n_azimuth'?)."""
+    problems = [_describe(error) for error in validator.iter_errors(data)]
+    typos = set()
+    for field, what in problems:
+        if what.startswith("unknown key (did you mean '"):
+            parent = field.rsplit(".", 1)[0] if "." in field else ""
+            suggestion = what.split("'")[1]
+            typos.add(f"{parent}.{suggestion}" if parent else suggestion)
+    return [(field, what) for field, what in problems if not (what == "required field is missing" and field in typos)]
+
+
+def _non_finite(node: Any, path: list) -> Iterator[tuple[str, str]]:
+    if isinstance(node, float) and not math.isfinite(node):
+        yield _field_path(path), f"expected a finite number, got {node!r}"
+    elif isinstance(node, dict):
+        for key, value in node.items():
+            yield from _non_finite(value, path + [key])
+    elif isinstance(node, list):
+        for index, value in enumerate(node):
+            yield from _non_finite(value, path + [index])
+
+
+def _raise(file: str | Path, problems: list[tuple[str, str]]) -> None:
+    if problems:
+        lines = [f"{file}: {field}: {what}" for field, what in sorted(set(problems))]
+        raise ConfigError(lines[0] if len(lines) == 1 else f"{len(lines)} problems:\n  " + "\n  ".join(lines))
+
+
+@functools.lru_cache(maxsize=None)
+def load_schema(name: str) -> dict:
+    """The schema ``nps/app/schemas/<name>.schema.yaml`` (parsed once per process; callers must not modify it)."""
+    with open(SCHEMA_DIR / f"{name}.schema.yaml") as handle:
+        return yaml.safe_load(handle)
+
+
+def schema_default(schema_name: str, field: str) -> Any:
+    """The ``default`` the schema declares for a dotted field path, e.g. ``("config", "resolution.n_psi")``.
+
+    The one source of defaults: the command-line options and the workflow read them from here.
+    """
+    node = load_schema(schema_name)
+    for part in field.split("."):
+        node = node["properties"][part]
+    if "default" not in node:
+        raise KeyError(f"{schema_name} schema: field '{field}' declares no default")
+    return node["default"]
+
+
+def field_problem(schema_name: str, field: str, value: Any) -> str | None:
+    """What is wrong with ``value`` for the dotted schema field (e.g. ``atmosphere.isa_delta_K``), or None."""
+    node = load_schema(schema_name)
+    for part in field.split("."):
+        node = node["properties"][part]
+    problems = [what for _, what in _non_finite(value, [])]
+    problems += [what for _, what in _schema_problems(jsonschema.Draft202012Validator(node), value)]
+    return problems[0] if problems else ordering_problem(field, value)
+
+
+# two-element fields whose elements the code needs strictly increasing (not expressible in the schema)
+ORDERED_PAIRS = {
+    "acoustics.bvispl_harmonics": "[first, last] harmonics with first < last",
+    "acoustics.dual_compact_chord_fractions": "[front, rear] with front < rear (two distinct source lines)",
+}
+
+
+def ordering_problem(field: str, value: Any) -> str | None:
+    """The ordering a field of :data:`ORDERED_PAIRS` needs, when ``value`` (schema-valid) violates it."""
+    if field in ORDERED_PAIRS and not value[0] < value[1]:
+        return f"expected {ORDERED_PAIRS[field]}, got {list(value)}"
+    return None
+
+
+def validate(data: Any, schema_name: str | dict, file: str | Path) -> dict:
+    """Validate ``data`` against a schema (a name under ``nps/app/schemas/`` or the schema itself);
+    raise :class:`ConfigError` listing every problem."""
+    if not isinstance(data, dict):
+        _raise(file, [("<top level>", f"expected a mapping, got {type(data).__name__}")])
+    problems = list(_non_finite(data, []))
+    validator = jsonschema.Draft202012Validator(load_schema(schema_name) if isinstance(schema_name, str) else schema_name)
+    problems += _schema_problems(validator, data)
+    _raise(file, problems)
+    return data
+
+
+def read_yaml(path: str | Path) -> Any:
+    """Parse a YAML file; a syntax error becomes a :class:`ConfigError` naming the file."""
+    path = Path(path)
+    if not path.exists():
+        raise ConfigError(f"{path}: file not found")
+    try:
+        with open(path) as handle:
+            return yaml.safe_load(handle)
+    except yaml.YAMLError as exc:
+        raise ConfigError(f"{path}: {yaml_error_text(exc)}") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{path}: cannot be read ({exc.__class__.__name__}: {exc})") from None
+
+
+def yaml_error_text(exc: yaml.YAMLError) -> str:
+    """One line for a YAML syntax error: ``line L, column C: not valid YAML: <problem> (<context>)``."""
+    mark = getattr(exc, "problem_mark", None)
+    where = f"line {mark.line + 1}, column {mark.column + 1}: " if mark is not None else ""
+    problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
+    context = getattr(exc, "context", None)
+    return f"{where}not valid YAML: {problem}" + (f" ({context})" if context else "")
+
+
+def load_aircraft(path: str | Path) -> dict:
+    """Read and validate one aircraft file, with its own cross checks."""
+    data = validate(read_yaml(path), "aircraft", path)
+    problems = []
+    names = [rotor["name"] for rotor in data["rotors"]]
+    for index, rotor in enumerate(data["rotors"]):
+        where = f"rotors[{index}]"
+        if names.count(rotor["name"]) > 1:
+            problems.append((f"{where}.name", f"expected a unique rotor name, '{rotor['name']}' repeats"))
+        if rotor["root_cutout_m"] >= rotor["radius_m"]:
+            problems.append((f"{where}.root_cutout_m", f"expected < radius_m ({rotor['radius_m']}), got {rotor['root_cutout_m']}"))
+        if rotor.get("hinge_offset_m", 0.0) >= rotor["radius_m"]:
+            problems.append((f"{where}.hinge_offset_m", f"expected < radius_m ({rotor['radius_m']})"))
+        if math.hypot(*rotor["thrust_axis_body"]) < 1e-9:
+            problems.append((f"{where}.thrust_axis_body", "expected a non-zero vector"))
+        elif rotor["role"] == "lift" and rotor["thrust_axis_body"][2] <= 0.0:
+            problems.append((f"{where}.thrust_axis_body", "expected a lift rotor's thrust axis pointing up (z > 0 in the body "
+                                                          f"frame: x forward, y port, z up), got {rotor['thrust_axis_body']}"))
+        problems += _rotor_sections(rotor, where, Path(path).parent)
+    if not problems:  # the rotors' geometry (blade tables resolved) is readable
+        problems += _hub_problems(data["rotors"])
+    if not any(rotor["role"] == "lift" for rotor in data["rotors"]):
+        problems.append(("rotors", "expected at least one rotor with role 'lift'"))
+    if sum(rotor["role"] == "antitorque" for rotor in data["rotors"]) > 1:
+        problems.append(("rotors", "expected at most one rotor with role 'antitorque'"))
+    if Path(path).stem != data["name"]:
+        problems.append(("name", f"expected the file stem '{Path(path).stem}', got '{data['name']}'"))
+    _raise(path, problems)
+    return data
+
+
+def _hub_problems(rotors: list[dict]) -> list[tuple[str, str]]:
+    """Rotors whose hub lies inside the disk another rotor's blades sweep: in that rotor's hub plane
+    (within one of its chords along its thrust axis) and inside its radius."""
+    from nps.rotor.geometry import RotorGeometry  # reference chord of linear blades and blade tables alike
+
+    chords = [RotorGeometry.from_config(rotor).chord_m for rotor in rotors]
+    problems, pairs = [], set()
+    for i, other in enumerate(rotors):
+        axis = [c / math.hypot(*other["thrust_axis_body"]) for c in other["thrust_axis_body"]] \
+            if math.hypot(*other["thrust_axis_body"]) > 1e-9 else [0.0, 0.0, 1.0]
+        for j, rotor in enumerate(rotors):
+            if i == j or frozenset((i, j)) in pairs:
+                continue
+            d = [a - b for a, b in zip(rotor["hub_position_m"], other["hub_position_m"])]
+            axial = sum(a * b for a, b in zip(d, axis))
+            in_plane = math.sqrt(max(0.0, sum(a * a for a in d) - axial * axial))
+            if abs(axial) < chords[i] and in_plane < other["radius_m"]:
+                pairs.add(frozenset((i, j)))
+                problems.append((f"rotors[{j}].hub_position_m", (
+                    f"hub {rotor['hub_position_m']} lies inside the disk swept by rotor '{other['name']}' "
+                    f"({in_plane:.3g} m from its hub in its plane, radius {other['radius_m']} m; {abs(axial):.3g} m along its axis, "
+                    f"chord {chords[i]:.3g} m): expected the hub outside the other rotors' blade paths")))
+    return problems
+
+
+def campaign_value_problems(config: dict) -> list[tuple[str, str]]:
+    """Ordering constraints of the campaign config the code relies on (not expressible in the schema)."""
+    problems = []
+    for field in ORDERED_PAIRS:
+        section, key = field.split(".")
+        problem = ordering_problem(field, config[section][key])
+        if problem:
+            problems.append((field, problem))
+    return problems + observer_set_problems(config["observer_sets"])
+
+
+def observer_set_problems(sets: dict) -> list[tuple[str, str]]:
+    """Ordering constraints of schema-valid ``observer_sets`` (ground-grid ranges increasing)."""
+    problems = []
+    for name, spec in sets.items():
+        for key in ("x_range_m", "y_range_m"):
+            if isinstance(spec, dict) and key in spec and not spec[key][0] < spec[key][1]:
+                problems.append((f"observer_sets.{name}.{key}", f"expected [low, high] with low < high, got {spec[key]}"))
+    return problems
+
+
+def load_observer_sets(path: str | Path) -> dict:
+    """The validated ``observer_sets`` of a campaign config file (for ``python -m nps observers``)."""
+    data = read_yaml(path)
+    if not isinstance(data, dict) or "observer_sets" not in data:
+        raise ConfigError(f"{path}: observer_sets: required field is missing (an observer-set mapping)")
+    node = load_schema("config")["properties"]["observer_sets"]
+    schema = {"type": "object", "properties": {"observer_sets": node}}
+    sets = {"observer_sets": data["observer_sets"]}
+    problems = list(_non_finite(sets, []))
+    problems += _schema_problems(jsonschema.Draft202012Validator(schema), sets)
+    _raise(path, problems)
+    _raise(path, observer_set_problems(data["observer_sets"]))
+    return data["observer_sets"]
+
+
+def _rotor_sections(rotor: dict, where: str, base: Path) -> list[tuple[str, str]]:
+    """Cross checks of one rotor's blade and airfoil tables and control fields.
+
+    Table paths are resolved against ``base`` (the aircraft file's directory) and replaced by
+    absolute paths in ``rotor``; the tables are then read once so that a malformed file or an
+    unknown airfoil name stops here, before any computation.
+    """
+    problems = []
+    if "blade" in rotor:
+        for key in ("chord_m", "twist_deg", "thickness_ratio"):
+            if key in rotor:
+                problems.append((f"{where}.{key}", "expected no linear-blade field next to a blade table (the table gives it)"))
+    holders = [("airfoil", rotor.get("airfoil", {}))]
+    holders += [(f"airfoils.{name}", foil) for name, foil in rotor.get("airfoils", {}).items()]
+    for field, foil in holders:
+        if "table" in foil:
+            extra = sorted(set(foil) - {"table", "extrapolation", "reynolds"})
+            if extra:
+                problems.append((f"{where}.{field}.{extra[0]}", "expected no linear-model parameter next to a table"))
+        else:
+            for key in ("extrapolation", "reynolds"):
+                if key in foil:
+                    problems.append((f"{where}.{field}.{key}", "applies to a table only; expected a table"))
+    mode = rotor.get("control", "collective")
+    if mode == "collective" and "pitch_deg" in rotor:
+        problems.append((f"{where}.pitch_deg", "expected no pitch_deg with control 'collective' (the trim sets the pitch)"))
+    if mode != "collective" and "pitch_deg" not in rotor:
+        problems.append((f"{where}.pitch_deg", f"required with control '{mode}'"))
+    for field, holder in holders + [("blade", rotor.get("blade", {}))]:
+        if "table" in holder:
+            table = base / holder["table"]
+            if not table.is_file():
+                problems.append((f"{where}.{field}.table", f"file not found: {table}"))
+            else:
+                holder["table"] = str(table.resolve())
+    if not problems:
+        try:
+            RotorGeometry.from_config(rotor)
+        except (AirfoilError, BladeError) as exc:
+            problems.append((where, str(exc)))
+    return problems
+
+
+def aircraft_rotor(aircraft: dict, name: str, path: str | Path) -> dict:
+    """The rotor called ``name`` of a validated aircraft read from ``path``; ConfigError naming the file if absent."""
+    rotor = next((r for r in aircraft["rotors"] if r["name"] == name), None)
+    if rotor is None:
+        raise ConfigError(f"{path}: rotors: no rotor named '{name}'; has {[r['name'] for r in aircraft['rotors']]}")
+    return rotor
+
+
+def load_mission(path: str | Path) -> dict:
+    """Read and validate one mission file."""
+    data = validate(read_yaml(path), "mission", path)
+    problems = []
+    ids = [segment["id"] for segment in data["segments"]]
+    for index, segment in enumerate(data["segments"]):
+        if ids.count(segment["id"]) > 1:
+            problems.append((f"segments[{index}].id", f"expected a unique id, '{segment['id']}' repeats"))
+        for aircraft, speeds in segment["aircraft"].items():
+            if "flight_path_deg" in speeds:
+                derived = math.degrees(math.atan2(speeds["climb_speed_mps"], speeds["forward_speed_mps"]))
+                if abs(derived - speeds["flight_path_deg"]) > 0.5:
+                    problems.append((
+                        f"segments[{index}].aircraft.{aircraft}.flight_path_deg",
+                        f"expected atan2(climb, forward) = {derived:.2f} deg within 0.5 deg, got {speeds['flight_path_deg']}",
+                    ))
+            if speeds["forward_speed_mps"] == 0 and speeds["climb_speed_mps"] != 0:
+                problems.append((f"segments[{index}].aircraft.{aircraft}", "vertical flight without forward speed is not supported"))
+    _raise(path, problems)
+    return data
+
+
+BROADBAND_MODELS = ("pegg", "bpm", "none")
+
+
+def broadband_model(value) -> str:
+    """The broadband model named by a ``models.broadband`` value: ``pegg``, ``bpm`` or ``none``; the
+    boolean spelling of earlier configurations maps true → ``pegg``, false → ``none``."""
+    if value is True or value is False:
+        return "pegg" if value else "none"
+    if value not in BROADBAND_MODELS:
+        raise ValueError(f"models.broadband: expected one of {list(BROADBAND_MODELS)} (or true/false), got {value!r}")
+    return str(value)
+
+
+@dataclass(frozen=True)
+class Campaign:
+    """A validated campaign: the config, its aircraft and mission, and the segment list."""
+
+    config: dict
+    aircraft: dict[str, dict]
+    mission: dict
+    segments: list[str]
+
+    def segment(self, segment_id: str) -> dict:
+        return next(s for s in self.mission["segments"] if s["id"] == segment_id)
+
+    def rotor(self, aircraft: str, rotor: str) -> dict:
+        return next(r for r in self.aircraft[aircraft]["rotors"] if r["name"] == rotor)
+
+    def rotor_names(self, aircraft: str) -> list[str]:
+        return [r["name"] for r in self.aircraft[aircraft]["rotors"]]
+
+    # Optional segment lists of the config default to every campaign segment (schema descriptions);
+    # these methods are the one place that applies those defaults.
+    def _listed(self, listed: list[str] | None) -> list[str]:
+        return [s for s in self.segments if listed is None or s in listed]
+
+    def observer_sets(self, segment: str) -> list[str]:
+        """Observer sets used in ``segment`` (``observer_sets.<name>.segments``, default all)."""
+        return [name for name, spec in self.config["observer_sets"].items() if segment in self._listed(spec.get("segments"))]
+
+    def bvi_segments(self) -> list[str]:
+        """Segments with the wake and BVI loads (``models.bvi_segments``, default all; none when ``models.bvi`` is off)."""
+        models = self.config["models"]
+        return self._listed(models.get("bvi_segments")) if models["bvi"] else []
+
+    def hsi_segments(self) -> list[str]:
+        """Segments with the HSI post-processing (``models.hsi_segments``, default all; none when ``models.hsi`` is off)."""
+        models = self.config["models"]
+        return self._listed(models.get("hsi_segments")) if models["hsi"] else []
+
+    def variants(self, segment: str) -> list[str]:
+        """Load variants radiated in ``segment``: the trimmed loads ("base") and/or the BVI loads ("bvi").
+
+        Outside the BVI segments only "base"; in a BVI segment "bvi", preceded by "base" where the
+        comparison without BVI is asked for (``models.without_bvi_segments``, default every BVI segment).
+        """
+        bvi = self.bvi_segments()
+        if segment not in bvi:
+            return ["base"]
+        without = self.config["models"].get("without_bvi_segments")
+        return ["base", "bvi"] if without is None or segment in without else ["bvi"]
+
+    def broadband_model(self) -> str:
+        """``models.broadband`` as a model name (:func:`broadband_model`)."""
+        return broadband_model(self.config["models"]["broadband"])
+
+    def output_option(self, field: str) -> Any:
+        """``outputs.<field>``, or the schema's default when the section or the field is absent."""
+        outputs = self.config.get("outputs", {})
+        return outputs[field] if field in outputs else schema_default("config", f"outputs.{field}")
+
+    def tone_observer_sets(self, segment: str) -> list[str]:
+        """Observer sets of ``segment`` with tone tables and spectra (``outputs.tone_observer_sets``, default all)."""
+        listed = self.config.get("outputs", {}).get("tone_observer_sets")
+        return [name for name in self.observer_sets(segment) if listed is None or name in listed]
+
+    def figure_segments(self, kind: str) -> list[str]:
+        """Campaign segments listed for a figure family (``figures.<kind>_segments``)."""
+        return self._listed(self.config["figures"][f"{kind}_segments"])
+
+
+def _footprint_problems(config: dict, mission: dict, all_ids: list[str]) -> list[tuple[str, str]]:
+    """Cross references of the ``footprint`` and ``certification`` sections (docs/footprint.md)."""
+    problems = []
+    footprint = config.get("footprint")
+    if footprint is not None:
+        spec = config["observer_sets"].get(footprint["source_set"])
+        if spec is None or spec["kind"] != "hemisphere" or not spec.get("moving", True):
+            problems.append(("footprint.source_set", f"expected a moving hemisphere of observer_sets, got '{footprint['source_set']}'"))
+        for index, leg in enumerate(mission.get("profile", [])):
+            if leg["segment"] not in all_ids:
+                problems.append((f"mission profile[{index}].segment", f"expected one of {all_ids}, got '{leg['segment']}'"))
+    certification = config.get("certification")
+    if certification is not None:
+        if footprint is None:
+            problems.append(("certification", "needs the footprint section (its source_set and ground)"))
+        for procedure, segment_id in certification["segments"].items():
+            if segment_id not in all_ids:
+                problems.append((f"certification.segments.{procedure}", f"expected one of {all_ids}, got '{segment_id}'"))
+    return problems
+
+
+def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", root: str | Path = ".") -> Campaign:
+    """Validate the campaign configuration and every file it names, with cross references."""
+    validate(config, "config", config_file)
+    _raise(config_file, campaign_value_problems(config))
+    root = Path(root)
+    config_dir = root / config["campaign"].get("config_dir", "config")
+    problems = []
+    aircraft = {}
+    for index, name in enumerate(config["campaign"]["aircraft"]):
+        path = config_dir / "aircraft" / f"{name}.yaml"
+        if not path.exists():
+            problems.append((f"campaign.aircraft[{index}]", f"expected an aircraft file {path}, none exists"))
+            continue
+        aircraft[name] = load_aircraft(path)
+    mission_path = config_dir / "missions" / f"{config['campaign']['mission']}.yaml"
+    if not mission_path.exists():
+        problems.append(("campaign.mission", f"expected a mission file {mission_path}, none exists"))
+    _raise(config_file, problems)
+    mission = load_mission(mission_path)
+    all_ids = [segment["id"] for segment in mission["segments"]]
+    segments = config["campaign"].get("segments", all_ids)
+    for index, segment_id in enumerate(segments):
+        if segment_id not in all_ids:
+            problems.append((f"campaign.segments[{index}]", f"expected one of the mission's segments {all_ids}, got '{segment_id}'"))
+    segment_lists = {f"figures.{key}": value for key, value in config["figures"].items()}
+    segment_lists["models.bvi_segments"] = config["models"].get("bvi_segments", [])
+    segment_lists["models.hsi_segments"] = config["models"].get("hsi_segments", [])
+    segment_lists["models.without_bvi_segments"] = config["models"].get("without_bvi_segments", [])
+    for where, listed in segment_lists.items():
+        for index, segment_id in enumerate(listed):
+            if segment_id not in all_ids:
+                problems.append((f"{where}[{index}]", f"expected one of {all_ids}, got '{segment_id}'"))
+    for index, set_name in enumerate(config.get("outputs", {}).get("tone_observer_sets", [])):
+        if set_name not in config["observer_sets"]:
+            problems.append((f"outputs.tone_observer_sets[{index}]", f"expected one of {list(config['observer_sets'])}, got '{set_name}'"))
+    for set_name, obs in config["observer_sets"].items():
+        for index, segment_id in enumerate(obs.get("segments", [])):
+            if segment_id not in all_ids:
+                problems.append((f"observer_sets.{set_name}.segments[{index}]", f"expected one of {all_ids}, got '{segment_id}'"))
+    problems += _footprint_problems(config, mission, all_ids)
+    _raise(config_file, problems)
+    for index, segment in enumerate(mission["segments"]):
+        if segment["id"] not in segments:
+            continue
+        for name in aircraft:
+            if name not in segment["aircraft"]:
+                problems.append((f"segments[{index}].aircraft", f"expected speeds for aircraft '{name}' of the campaign"))
+        for name, speeds in segment["aircraft"].items():
+            if name not in aircraft and not (config_dir / "aircraft" / f"{name}.yaml").exists():
+                problems.append((f"segments[{index}].aircraft.{name}", "names an aircraft that does not exist"))
+            rotor_names = [r["name"] for r in aircraft[name]["rotors"]] if name in aircraft else None
+            for rotor in speeds.get("rotor_omega_scale", {}):
+                if rotor_names is not None and rotor not in rotor_names:
+                    problems.append((
+                        f"segments[{index}].aircraft.{name}.rotor_omega_scale.{rotor}",
+                        f"names a rotor that does not exist; {name} has {rotor_names}",
+                    ))
+    _raise(mission_path, problems)
+    return Campaign(config=config, aircraft=aircraft, mission=mission, segments=list(segments))
+
+
+def _with_defaults(data: dict, schema: dict) -> dict:
+    """``data`` with the schema's defaults of absent optional properties, one object level deep."""
+    out = dict(data)
+    for key, sub in schema.get("properties", {}).items():
+        if "default" in sub and key not in out:
+            out[key] = sub["default"]
+        if sub.get("type") == "object" and isinstance(out.get(key), dict):
+            out[key] = _with_defaults(out[key], sub)
+    return out
+
+
+def load_rotor_test(path: str | Path) -> dict:
+    """Read and validate one rotor test (``config/tests/*.yaml``, nps.rig.case) with its rotor.
+
+    Returns the test with the schema's defaults filled in, ``rotor_config`` (the rotor as the stages
+    use it: :func:`nps.rig.case.rotor_for_test`, validated like an aircraft's ``rotors[]`` entry, tables
+    resolved) and ``microphones_T`` / ``microphone_groups`` (positions in the test frame, group index).
+    """
+    from nps.noise.observers import ObserverError
+    from nps.rig.case import microphone_positions, rotor_for_test
+
+    path = Path(path)
+    # the condition's blade-motion fields refer to the aircraft schema's rotor definitions
+    schema = {**load_schema("rotor_test"), "$defs": load_schema("aircraft")["$defs"]}
+    data = _with_defaults(validate(read_yaml(path), schema, path), schema)
+    if path.stem != data["name"]:
+        _raise(path, [("name", f"expected the file stem '{path.stem}', got '{data['name']}'")])
+    ref, base = data["rotor"], path.parent
+    if "file" in ref:
+        rotor_file = base / ref["file"]
+        rotor = rotor_for_test(read_yaml(rotor_file), data["condition"])
+        aircraft_schema = load_schema("aircraft")
+        validate(rotor, {"$defs": aircraft_schema["$defs"], "$ref": "#/$defs/rotor"}, rotor_file)
+    else:
+        rotor_file = base / ref["aircraft"]
+        rotor = rotor_for_test(aircraft_rotor(load_aircraft(rotor_file), ref["name"], rotor_file), data["condition"])
+    _raise(rotor_file, [(f"rotor '{rotor['name']}'{field[len('rotor'):]}", what)
+                        for field, what in _rotor_sections(rotor, "rotor", rotor_file.parent)])
+    mode = rotor.get("control", "collective")
+    if mode != "fixed" and "thrust_N" not in data["condition"]:
+        _raise(path, [("condition.thrust_N", f"required with control '{mode}' (the thrust target)")])
+    try:
+        positions, groups = microphone_positions(data["microphones"], base)
+    except ObserverError as exc:
+        raise ConfigError(f"{path}: microphones: {exc}") from None
+    return {**data, "rotor_config": rotor, "microphones_T": positions, "microphone_groups": groups}

@@ -1,0 +1,189 @@
+"""Rotor control modes: what is trimmed, and by which control, for one rotor.
+
+- ``collective`` (default): collective and cyclic pitch trimmed to the thrust and hub-moment
+  targets at the given rotor speed (:func:`nps.rotor.bet.trim_rotor`, thesis Fig. 4.3). With
+  ``flapping: false`` (rigid blades, no cyclic: a propeller) only the collective is trimmed,
+  to the thrust, and the hub moments are whatever the loads give (reported, not trimmed).
+- ``rpm``: fixed blade pitch θ0 (``pitch_deg`` at 75 % radius), no cyclic; the rotor speed Ω
+  is trimmed so that the thrust meets the target. The free stream is held: the advance
+  ratios scale as μ = V/(ΩR), so μ Ω stays that of the operating point.
+- ``fixed``: given θ0 and Ω, nothing trimmed; the thrust, torque and power are the answer
+  (:func:`nps.rotor.bet.rotor_loads`). The operating point's thrust target is not used.
+
+``flapping`` (default true) applies to every mode: false holds β ≡ 0.
+
+Both one-control trims (Ω → T, θ0 → T) are secant iterations on the thrust residual to
+|T − T*| ≤ tol_rel |T*|, the inflow (and flapping) re-solved at every evaluation. Ω starts
+at the operating point's speed and its T ∝ Ω² correction Ω √(T*/T); θ0 at 0.10 and 0.11 rad.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Callable, Mapping
+
+import numpy as np
+import pandas as pd
+
+from nps.rotor.bet import Controls, DiskGrid, RotorTrim, TrimError, rotor_loads, trim_rotor
+from nps.rotor.geometry import OperatingPoint, RotorGeometry
+
+MODES = ("collective", "rpm", "fixed")
+_MAX_ITERATIONS = 30
+_THETA_START_RAD = 0.1
+
+
+@dataclass(frozen=True)
+class RotorControl:
+    """Control mode of one rotor; ``pitch_rad`` θ0 at 75 % radius for ``rpm`` and ``fixed``."""
+
+    mode: str = "collective"
+    pitch_rad: float | None = None
+    flapping: bool = True
+
+    def __post_init__(self):
+        if self.mode not in MODES:
+            raise ValueError(f"control: expected one of {MODES}, got {self.mode!r}")
+        if self.mode == "collective" and self.pitch_rad is not None:
+            raise ValueError("control pitch_deg: expected none with control 'collective' (the trim sets the pitch)")
+        if self.mode != "collective" and not (self.pitch_rad is not None and math.isfinite(self.pitch_rad)):
+            raise ValueError(f"control pitch_deg: required (a finite number) with control '{self.mode}'")
+
+    @classmethod
+    def from_config(cls, rotor: Mapping) -> "RotorControl":
+        """From a validated ``rotors[]`` entry: ``control``, ``pitch_deg``, ``flapping``."""
+        pitch = rotor.get("pitch_deg")
+        return cls(str(rotor.get("control", "collective")), None if pitch is None else math.radians(float(pitch)),
+                   bool(rotor.get("flapping", True)))
+
+
+@dataclass(frozen=True)
+class RotorSolution:
+    """Loads of one rotor under its control mode, and the operating point they belong to
+    (for ``rpm`` the trimmed rotor speed and the advance ratios at it)."""
+
+    result: RotorTrim
+    operating_point: OperatingPoint
+    control: RotorControl
+
+    def summary(self) -> pd.DataFrame:
+        """The rotor loads summary (:meth:`RotorTrim.summary`) plus the rotor speed."""
+        extra = pd.DataFrame({"quantity": ["omega_rad_s"], "value": np.array([self.operating_point.omega_rad_s]),
+                              "unit": ["rad/s"]})
+        return pd.concat([self.result.summary(), extra], ignore_index=True)
+
+
+def at_rotor_speed(op: OperatingPoint, omega_rad_s: float) -> OperatingPoint:
+    """``op`` at another rotor speed with the same free stream: μ_i Ω held."""
+    scale = op.omega_rad_s / omega_rad_s
+    return replace(op, omega_rad_s=omega_rad_s, mu_x=op.mu_x * scale, mu_y=op.mu_y * scale, mu_z=op.mu_z * scale)
+
+
+def _secant(evaluate: Callable[[float], RotorTrim], u0: float, first: RotorTrim, u1: float, target: float,
+            tol: float, what: str, name: str) -> tuple[float, RotorTrim]:
+    """Control u with |thrust − target| ≤ tol by the secant method from (u0, ``first``) and u1."""
+    t0 = first.totals.thrust_N
+    for _ in range(_MAX_ITERATIONS):
+        result = evaluate(u1)
+        t1 = result.totals.thrust_N
+        if abs(t1 - target) <= tol:
+            return u1, result
+        if t1 == t0:
+            break
+        u0, u1, t0 = u1, u1 - (t1 - target) * (u1 - u0) / (t1 - t0), t1
+        if not math.isfinite(u1):
+            break
+    raise TrimError(f"rotor '{name}': {what} trim did not reach the thrust target {target:.6g} N within {tol:.3g} N "
+                    f"in {_MAX_ITERATIONS} iterations (last {what} {u1:.6g}, thrust {t1:.6g} N)")
+
+
+def solve_rotor(geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, control: RotorControl, *,
+                tol_rel: float = 1e-3, tip_loss: bool = True) -> RotorSolution:
+    """Blade loads of one rotor under ``control`` (module docstring) at the operating point ``op``.
+
+    ``op.thrust_N`` is the target of ``collective`` and ``rpm``; ``op.omega_rad_s`` the rotor
+    speed of ``collective`` and ``fixed`` and the start value of ``rpm``.
+    """
+    if not 0.0 < tol_rel < 0.1:
+        raise ValueError(f"solve_rotor: tol_rel: expected 0 < tol_rel < 0.1, got {tol_rel!r}")
+    if control.mode == "collective" and control.flapping:
+        return RotorSolution(trim_rotor(geometry, op, grid, tol_rel=tol_rel, tip_loss=tip_loss), op, control)
+
+    def loads(theta0: float, point: OperatingPoint) -> RotorTrim:
+        return rotor_loads(geometry, point, grid, Controls(theta0), tip_loss=tip_loss, flapping=control.flapping)
+
+    if control.mode == "fixed":
+        return RotorSolution(loads(control.pitch_rad, op), op, control)
+    target, tol = op.thrust_N, tol_rel * abs(op.thrust_N)
+    if target <= 0.0:
+        raise ValueError(f"rotor '{geometry.name}': operating point thrust_N: expected a positive thrust target for "
+                         f"control '{control.mode}', got {target!r}")
+    if control.mode == "rpm":
+        first = loads(control.pitch_rad, op)
+        thrust0 = first.totals.thrust_N
+        if not thrust0 > 0.0:
+            raise TrimError(f"rotor '{geometry.name}': pitch {math.degrees(control.pitch_rad):.3g} deg gives no positive "
+                            f"thrust ({thrust0:.4g} N) at {op.omega_rad_s:.4g} rad/s; rpm control cannot reach the target")
+        omega, result = _secant(lambda w: loads(control.pitch_rad, at_rotor_speed(op, w)), op.omega_rad_s, first,
+                                op.omega_rad_s * math.sqrt(target / thrust0), target, tol, "rotor speed", geometry.name)
+        return RotorSolution(result, at_rotor_speed(op, omega), control)
+    # collective without flapping: θ0 alone, from 0.1 rad and a 0.01 rad step
+    _, result = _secant(lambda t: loads(t, op), _THETA_START_RAD, loads(_THETA_START_RAD, op),
+                            _THETA_START_RAD + 0.01, target, tol, "collective", geometry.name)
+    return RotorSolution(result, op, control)
+
+
+def trim_rotor_speeds(aircraft: Mapping, flight, omega_scale: Mapping[str, float] | None, grid: DiskGrid,
+                      tol_rel: float = 1e-3, max_iterations: int = 20) -> pd.DataFrame:
+    """Aircraft trim (:func:`nps.rotor.trim.trim_aircraft`) with the speeds of the ``rpm``-controlled
+    rotors solved by the blade-element loads: the rotor-speed re-trim of the trim stage.
+
+    The aircraft balance gives every rotor's thrust at the current speeds; each ``rpm`` rotor's
+    Ω is then solved to that thrust at its fixed pitch (:func:`solve_rotor`, tolerance
+    ``tol_rel``/4) and the aircraft re-trimmed at the new speeds (they change the momentum
+    torques, hence the thrust shares). Stops when no speed moves by more than ``tol_rel``/8
+    relative: the loads at the table's Ω then meet its thrust to ``tol_rel`` (thrust ∝ Ω²).
+    Without ``rpm`` rotors this is :func:`nps.rotor.trim.trim_aircraft` itself (same table).
+    """
+    from nps.rotor.trim import trim_aircraft, trim_row
+
+    controlled = {r["name"]: r for r in aircraft["rotors"] if r.get("control", "collective") == "rpm"}
+    speeds: dict[str, float] = {}
+    for _ in range(max_iterations):
+        table = trim_aircraft(aircraft, flight, omega_scale, speeds)
+        if not controlled:
+            return table
+        solved = {}
+        for name, rotor in controlled.items():
+            row = trim_row(table, name)
+            solution = solve_rotor(RotorGeometry.from_config(rotor), OperatingPoint.from_trim_row(row), grid,
+                                   RotorControl.from_config(rotor), tol_rel=tol_rel / 4,
+                                   tip_loss=bool(rotor.get("tip_loss", True)))
+            solved[name] = solution.operating_point.omega_rad_s
+        moved = max(abs(solved[n] - speeds.get(n, trim_row(table, n)["omega_rad_s"])) / solved[n] for n in solved)
+        speeds = solved
+        if moved <= tol_rel / 8:
+            return trim_aircraft(aircraft, flight, omega_scale, speeds)
+    raise TrimError(f"aircraft '{aircraft['name']}': rotor speeds of the rpm-controlled rotors {sorted(controlled)} did "
+                    f"not settle in {max_iterations} aircraft re-trims (last change {moved:.3g} relative)")
+
+
+def loads_at_trim(geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, control: RotorControl,
+                  tol_rel: float = 1e-3, tip_loss: bool = True) -> RotorSolution:
+    """The loads stage's solution at one trim-table operating point ``op``.
+
+    ``collective`` and ``fixed``: :func:`solve_rotor`. ``rpm``: the table's Ω is already the
+    solved speed (:func:`trim_rotor_speeds`, or the rotor-test set-up), so the loads are taken
+    at it with the fixed pitch — every later stage reads the same Ω from the table — and must
+    meet the table's thrust to ``tol_rel``; a table not trimmed for rpm control fails here.
+    """
+    if control.mode != "rpm":
+        return solve_rotor(geometry, op, grid, control, tol_rel=tol_rel, tip_loss=tip_loss)
+    solution = solve_rotor(geometry, op, grid, replace(control, mode="fixed"), tol_rel=tol_rel, tip_loss=tip_loss)
+    thrust = solution.result.totals.thrust_N
+    if not abs(thrust - op.thrust_N) <= tol_rel * abs(op.thrust_N):
+        raise TrimError(f"rotor '{geometry.name}': rpm control: the trim table's rotor speed {op.omega_rad_s:.6g} rad/s "
+                        f"gives {thrust:.6g} N, not its thrust {op.thrust_N:.6g} N within {tol_rel:.3g}; the trim "
+                        f"table was not trimmed for rpm control (trim stage, nps.rotor.control.trim_rotor_speeds)")
+    return RotorSolution(solution.result, op, control)
