@@ -1,6 +1,6 @@
 # NPS study workflow: trim -> loads -> wake (+ BVI loads) -> acoustics -> hsi -> metrics -> figures.
-# `snakemake -j2 all` runs the campaign of config/config.yaml; `snakemake --report report.html`
-# builds the HTML report. Rules live in workflow/rules/, one file per stage.
+# `snakemake -j2 all` runs the campaign of config/config.yaml; `snakemake -j2 rigs` the rigs of config/rigs/
+# (rig.smk); `snakemake --report report.html` builds the HTML report. Rules live in workflow/rules/, one file per stage.
 import os
 import sys
 
@@ -48,4 +48,4 @@ include: "workflow/rules/figures.smk"
 include: "workflow/rules/study.smk"
 include: "workflow/rules/footprint.smk"
 include: "workflow/rules/certification.smk"
-include: "workflow/rules/tests.smk"
+include: "workflow/rules/rig.smk"

@@ -12,7 +12,7 @@ relaxation iterations and the interaction summary.
 ``--exact`` also runs without the far-field grouping of the other rotors' wakes
 (``FreeWakeModel(far_group_deg=0)``, every 1° segment) and prints, per rotor, the change of
 peak and RMS BVI ΔU_P, of the rotor thrust and of the largest section-load change that the grouping
-makes (docs/models/wake_bvi.md, "Performance").
+makes (docs/reference/wake_bvi.md, "Performance").
 Run from the repository root: ``python benchmarks/bench_freewake.py [--exact] [aircraft ...]``.
 """
 

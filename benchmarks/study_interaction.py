@@ -1,4 +1,4 @@
-"""The study with rotor–rotor interaction next to the isolated-rotor study: the tables of docs/study.md,
+"""The study with rotor–rotor interaction next to the isolated-rotor study: the tables of docs/findings/study.md,
 "With rotor–rotor interaction (`wake.model: free`)".
 
 Reads two finished study campaigns — isolated Beddoes wakes (the default) and ``wake.model: free`` —
@@ -10,10 +10,10 @@ induce on it, and the thrust change they cause before the re-trim (nps.wake.inte
 
 Without result directories it runs both campaigns first (benchmarks/bench_campaign.py --study-only,
 with and without --free-wake; about 3 + 5 min on the 2-core machine) and prints their wall and CPU
-times. ``--update docs/study.md`` rewrites the tables between the markers
+times. ``--update docs/findings/study.md`` rewrites the tables between the markers
 ``<!-- interaction tables -->`` and ``<!-- end interaction tables -->``.
 
-    python benchmarks/study_interaction.py [--beddoes RESULTS --free RESULTS] [--update docs/study.md]
+    python benchmarks/study_interaction.py [--beddoes RESULTS --free RESULTS] [--update docs/findings/study.md]
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ import bench_campaign
 
 START, END = "<!-- interaction tables -->", "<!-- end interaction tables -->"
 # What thesis chapter 7 reports for the BVI segments (isolated Beddoes wakes; its Figs. 7.10, 7.16,
-# 7.27, 7.42 and text; azimuth and elevation in the map convention of docs/study.md)
+# 7.27, 7.42 and text; azimuth and elevation in the map convention of docs/findings/study.md)
 THESIS = {
     ("helicopter", "seg3"): "max BVISPL at (87°, −39°), advancing side",
     ("helicopter", "seg4"): "max BVISPL > 10 dB below seg3",
@@ -112,7 +112,7 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--beddoes", type=Path, help="results/ of the default (Beddoes) study")
     ap.add_argument("--free", type=Path, help="results/ of the study with wake.model: free")
-    ap.add_argument("--update", type=Path, help="rewrite the tables in this markdown file (docs/study.md)")
+    ap.add_argument("--update", type=Path, help="rewrite the tables in this markdown file (docs/findings/study.md)")
     args = ap.parse_args(argv)
     if (args.beddoes is None) != (args.free is None):
         ap.error("give both --beddoes and --free, or neither (then both studies are run)")

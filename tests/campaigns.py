@@ -1,7 +1,7 @@
 """The tiny campaign of the end-to-end tests: two aircraft, two segments, coarse resolution."""
 
 TINY = {
-    # 2 wake revolutions are short of the ~2.5 the seg3 descent needs (docs/models/validity.md): run with the
+    # 2 wake revolutions are short of the ~2.5 the seg3 descent needs (docs/reference/validity.md): run with the
     # switch, the warning recorded in the wake and BVI tables' metadata and in the summary CSV
     "campaign": {"mission": "demo", "aircraft": ["helicopter", "coaxial"], "segments": ["seg2", "seg3"],
                  "allow_outside_validity": True},
@@ -17,3 +17,19 @@ TINY = {
     "acoustics": {"dual_compact_chord_fractions": [0.13, 0.87], "bvispl_harmonics": [7, 40]},
     "atmosphere": {"altitude_m": 0.0, "isa_delta_K": 0.0, "relative_humidity_pct": 70.0},
 }
+
+
+def tiny_manifest():
+    """The committed content digests of the tiny campaign for this machine's CPU class (nps.app.digests):
+    bit-identity holds within a class; a class without a manifest skips, naming how to make one."""
+    from pathlib import Path
+
+    import pytest
+
+    from nps.app.digests import cpu_class, manifest_path
+
+    path = manifest_path(Path(__file__).parent / "data" / "manifests", "tiny_campaign")
+    if not path.is_file():
+        pytest.skip(f"no tiny-campaign manifest for CPU class {cpu_class()}: make {path.name} with "
+                    "`python -m nps.app.digests RESULTS_DIR` from the tiny campaign of the code before a change")
+    return path

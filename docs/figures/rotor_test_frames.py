@@ -1,5 +1,5 @@
-"""Draws docs/figures/rotor_test_frames.png: the test frame T of rotor tests and the flight frame G
-(nps.rig.case, docs/rotor_tests.md). Run: python docs/figures/rotor_test_frames.py"""
+"""Draws docs/figures/rotor_test_frames.png: the test frame T of a rig and the flight frame G
+(nps.rig.case, docs/reference/rigs.md). Run: python docs/figures/rotor_test_frames.py"""
 
 from pathlib import Path
 

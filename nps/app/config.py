@@ -1,12 +1,14 @@
 """Configuration files: loading, JSON-schema validation and cross-reference checks.
 
-Schemas live in ``nps/app/schemas/`` (config, aircraft, mission) with the defaults of optional fields. Every problem is reported
+Schemas live in ``nps/app/schemas/`` (config, aircraft, mission) with the defaults of optional fields, the one
+source of defaults: the loaders return the files with every default filled (:func:`fill_defaults`). Every problem is reported
 before any computation as a :class:`ConfigError` whose lines read
 ``<file>: <field path>: <what was expected>``.
 """
 
 from __future__ import annotations
 
+import copy
 import difflib
 import functools
 import math
@@ -121,7 +123,8 @@ def load_schema(name: str) -> dict:
 def schema_default(schema_name: str, field: str) -> Any:
     """The ``default`` the schema declares for a dotted field path, e.g. ``("config", "resolution.n_psi")``.
 
-    The one source of defaults: the command-line options and the workflow read them from here.
+    The one source of defaults: :func:`fill_defaults` fills validated files with them, the command-line
+    options take theirs from here.
     """
     node = load_schema(schema_name)
     for part in field.split("."):
@@ -129,6 +132,43 @@ def schema_default(schema_name: str, field: str) -> Any:
     if "default" not in node:
         raise KeyError(f"{schema_name} schema: field '{field}' declares no default")
     return node["default"]
+
+
+def resolve_ref(node: dict, root: dict) -> dict:
+    """``node`` with a local ``$ref`` (``#/$defs/...``) replaced by its target (one schema file)."""
+    while "$ref" in node:
+        target = root
+        for part in node["$ref"].lstrip("#/").split("/"):
+            target = target[part]
+        node = target
+    return node
+
+
+def fill_defaults(data: Any, schema: dict, root: dict | None = None) -> Any:
+    """A copy of schema-valid ``data`` with every ``default`` of the schema filled in where the key is
+    absent, recursively: object properties (a filled ``default: {}`` object gets its own defaults),
+    named and ``additionalProperties`` values, array items, local ``$ref``s into ``$defs``.
+
+    The one place defaults are applied: the loaders below return filled configurations, so stages,
+    rules and commands read ``cfg["key"]`` and carry no default of their own.
+    """
+    root = schema if root is None else root
+    node = resolve_ref(schema, root)
+    if isinstance(data, dict):
+        out = {}
+        named = node.get("properties", {})
+        extra = node.get("additionalProperties")
+        for key, value in data.items():
+            sub = named.get(key, extra if isinstance(extra, dict) else None)
+            out[key] = fill_defaults(value, sub, root) if sub is not None else copy.deepcopy(value)
+        for key, sub in named.items():
+            sub = resolve_ref(sub, root)
+            if key not in out and "default" in sub:
+                out[key] = fill_defaults(copy.deepcopy(sub["default"]), sub, root)
+        return out
+    if isinstance(data, list) and isinstance(node.get("items"), dict):
+        return [fill_defaults(item, node["items"], root) for item in data]
+    return copy.deepcopy(data)
 
 
 def field_problem(schema_name: str, field: str, value: Any) -> str | None:
@@ -167,14 +207,33 @@ def validate(data: Any, schema_name: str | dict, file: str | Path) -> dict:
     return data
 
 
+class _UniqueKeyLoader(yaml.SafeLoader):
+    """YAML's safe loader refusing a mapping that names one key twice (PyYAML keeps the last silently)."""
+
+    def construct_mapping(self, node, deep=False):
+        if isinstance(node, yaml.MappingNode):
+            first: dict = {}
+            for key_node, _ in node.value:
+                if key_node.tag == "tag:yaml.org,2002:merge":
+                    continue
+                key = self.construct_object(key_node, deep=True)
+                if key in first:
+                    raise yaml.constructor.ConstructorError(
+                        None, None, f"duplicate key {key!r} (first at line {first[key].line + 1}); keep one",
+                        key_node.start_mark)
+                first[key] = key_node.start_mark
+        return super().construct_mapping(node, deep=deep)
+
+
 def read_yaml(path: str | Path) -> Any:
-    """Parse a YAML file; a syntax error becomes a :class:`ConfigError` naming the file."""
+    """Parse a YAML file; a syntax error or a key given twice in one mapping becomes a
+    :class:`ConfigError` naming the file, line and column."""
     path = Path(path)
     if not path.exists():
         raise ConfigError(f"{path}: file not found")
     try:
         with open(path) as handle:
-            return yaml.safe_load(handle)
+            return yaml.load(handle, Loader=_UniqueKeyLoader)
     except yaml.YAMLError as exc:
         raise ConfigError(f"{path}: {yaml_error_text(exc)}") from None
     except (OSError, UnicodeDecodeError) as exc:
@@ -191,8 +250,8 @@ def yaml_error_text(exc: yaml.YAMLError) -> str:
 
 
 def load_aircraft(path: str | Path) -> dict:
-    """Read and validate one aircraft file, with its own cross checks."""
-    data = validate(read_yaml(path), "aircraft", path)
+    """Read and validate one aircraft file, with its own cross checks; schema defaults filled."""
+    data = fill_defaults(validate(read_yaml(path), "aircraft", path), load_schema("aircraft"))
     problems = []
     names = [rotor["name"] for rotor in data["rotors"]]
     for index, rotor in enumerate(data["rotors"]):
@@ -201,7 +260,7 @@ def load_aircraft(path: str | Path) -> dict:
             problems.append((f"{where}.name", f"expected a unique rotor name, '{rotor['name']}' repeats"))
         if rotor["root_cutout_m"] >= rotor["radius_m"]:
             problems.append((f"{where}.root_cutout_m", f"expected < radius_m ({rotor['radius_m']}), got {rotor['root_cutout_m']}"))
-        if rotor.get("hinge_offset_m", 0.0) >= rotor["radius_m"]:
+        if rotor["hinge_offset_m"] >= rotor["radius_m"]:
             problems.append((f"{where}.hinge_offset_m", f"expected < radius_m ({rotor['radius_m']})"))
         if math.hypot(*rotor["thrust_axis_body"]) < 1e-9:
             problems.append((f"{where}.thrust_axis_body", "expected a non-zero vector"))
@@ -268,7 +327,7 @@ def observer_set_problems(sets: dict) -> list[tuple[str, str]]:
 
 
 def load_observer_sets(path: str | Path) -> dict:
-    """The validated ``observer_sets`` of a campaign config file (for ``python -m nps observers``)."""
+    """The validated ``observer_sets`` of a campaign config file, defaults filled (for ``python -m nps observers``)."""
     data = read_yaml(path)
     if not isinstance(data, dict) or "observer_sets" not in data:
         raise ConfigError(f"{path}: observer_sets: required field is missing (an observer-set mapping)")
@@ -279,7 +338,7 @@ def load_observer_sets(path: str | Path) -> dict:
     problems += _schema_problems(jsonschema.Draft202012Validator(schema), sets)
     _raise(path, problems)
     _raise(path, observer_set_problems(data["observer_sets"]))
-    return data["observer_sets"]
+    return fill_defaults(data["observer_sets"], node)
 
 
 def _rotor_sections(rotor: dict, where: str, base: Path) -> list[tuple[str, str]]:
@@ -302,10 +361,12 @@ def _rotor_sections(rotor: dict, where: str, base: Path) -> list[tuple[str, str]
             if extra:
                 problems.append((f"{where}.{field}.{extra[0]}", "expected no linear-model parameter next to a table"))
         else:
+            # a filled linear airfoil carries the schema's extrapolation default, which changes nothing
+            extrapolation = load_schema("aircraft")["$defs"]["airfoil"]["properties"]["extrapolation"]["default"]
             for key in ("extrapolation", "reynolds"):
-                if key in foil:
+                if key in foil and not (key == "extrapolation" and foil[key] == extrapolation):
                     problems.append((f"{where}.{field}.{key}", "applies to a table only; expected a table"))
-    mode = rotor.get("control", "collective")
+    mode = rotor["control"]
     if mode == "collective" and "pitch_deg" in rotor:
         problems.append((f"{where}.pitch_deg", "expected no pitch_deg with control 'collective' (the trim sets the pitch)"))
     if mode != "collective" and "pitch_deg" not in rotor:
@@ -334,8 +395,8 @@ def aircraft_rotor(aircraft: dict, name: str, path: str | Path) -> dict:
 
 
 def load_mission(path: str | Path) -> dict:
-    """Read and validate one mission file."""
-    data = validate(read_yaml(path), "mission", path)
+    """Read and validate one mission file; schema defaults filled."""
+    data = fill_defaults(validate(read_yaml(path), "mission", path), load_schema("mission"))
     problems = []
     ids = [segment["id"] for segment in data["segments"]]
     for index, segment in enumerate(data["segments"]):
@@ -370,12 +431,15 @@ def broadband_model(value) -> str:
 
 @dataclass(frozen=True)
 class Campaign:
-    """A validated campaign: the config, its aircraft and mission, and the segment list."""
+    """A validated campaign: the config (schema defaults filled), its aircraft and mission (filled), the
+    segment list, and ``written``, the config as written (for metadata that records it, e.g. the
+    footprint's ``ground``)."""
 
     config: dict
     aircraft: dict[str, dict]
     mission: dict
     segments: list[str]
+    written: dict
 
     def segment(self, segment_id: str) -> dict:
         return next(s for s in self.mission["segments"] if s["id"] == segment_id)
@@ -421,14 +485,18 @@ class Campaign:
         """``models.broadband`` as a model name (:func:`broadband_model`)."""
         return broadband_model(self.config["models"]["broadband"])
 
-    def output_option(self, field: str) -> Any:
-        """``outputs.<field>``, or the schema's default when the section or the field is absent."""
-        outputs = self.config.get("outputs", {})
-        return outputs[field] if field in outputs else schema_default("config", f"outputs.{field}")
+    def as_written(self, field: str) -> Any:
+        """The dotted config ``field`` as the file writes it: its value there, or the schema's default
+        unfilled when absent (for metadata that records the configuration as written)."""
+        *parents, key = field.split(".")
+        node = self.written
+        for part in parents:
+            node = node[part]
+        return copy.deepcopy(node[key]) if key in node else schema_default("config", field)
 
     def tone_observer_sets(self, segment: str) -> list[str]:
         """Observer sets of ``segment`` with tone tables and spectra (``outputs.tone_observer_sets``, default all)."""
-        listed = self.config.get("outputs", {}).get("tone_observer_sets")
+        listed = self.config["outputs"].get("tone_observer_sets")
         return [name for name in self.observer_sets(segment) if listed is None or name in listed]
 
     def figure_segments(self, kind: str) -> list[str]:
@@ -437,12 +505,12 @@ class Campaign:
 
 
 def _footprint_problems(config: dict, mission: dict, all_ids: list[str]) -> list[tuple[str, str]]:
-    """Cross references of the ``footprint`` and ``certification`` sections (docs/footprint.md)."""
+    """Cross references of the ``footprint`` and ``certification`` sections (docs/reference/footprint.md)."""
     problems = []
     footprint = config.get("footprint")
     if footprint is not None:
         spec = config["observer_sets"].get(footprint["source_set"])
-        if spec is None or spec["kind"] != "hemisphere" or not spec.get("moving", True):
+        if spec is None or spec["kind"] != "hemisphere" or not spec["moving"]:
             problems.append(("footprint.source_set", f"expected a moving hemisphere of observer_sets, got '{footprint['source_set']}'"))
         for index, leg in enumerate(mission.get("profile", [])):
             if leg["segment"] not in all_ids:
@@ -458,11 +526,13 @@ def _footprint_problems(config: dict, mission: dict, all_ids: list[str]) -> list
 
 
 def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", root: str | Path = ".") -> Campaign:
-    """Validate the campaign configuration and every file it names, with cross references."""
-    validate(config, "config", config_file)
+    """Validate the campaign configuration and every file it names, with cross references; the
+    :class:`Campaign` holds them with every schema default filled (:func:`fill_defaults`)."""
+    written = copy.deepcopy(validate(config, "config", config_file))
+    config = fill_defaults(written, load_schema("config"))
     _raise(config_file, campaign_value_problems(config))
     root = Path(root)
-    config_dir = root / config["campaign"].get("config_dir", "config")
+    config_dir = root / config["campaign"]["config_dir"]
     problems = []
     aircraft = {}
     for index, name in enumerate(config["campaign"]["aircraft"]):
@@ -489,7 +559,7 @@ def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", 
         for index, segment_id in enumerate(listed):
             if segment_id not in all_ids:
                 problems.append((f"{where}[{index}]", f"expected one of {all_ids}, got '{segment_id}'"))
-    for index, set_name in enumerate(config.get("outputs", {}).get("tone_observer_sets", [])):
+    for index, set_name in enumerate(config["outputs"].get("tone_observer_sets", [])):
         if set_name not in config["observer_sets"]:
             problems.append((f"outputs.tone_observer_sets[{index}]", f"expected one of {list(config['observer_sets'])}, got '{set_name}'"))
     for set_name, obs in config["observer_sets"].items():
@@ -515,52 +585,60 @@ def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", 
                         f"names a rotor that does not exist; {name} has {rotor_names}",
                     ))
     _raise(mission_path, problems)
-    return Campaign(config=config, aircraft=aircraft, mission=mission, segments=list(segments))
+    return Campaign(config=config, aircraft=aircraft, mission=mission, segments=list(segments), written=written)
 
 
-def _with_defaults(data: dict, schema: dict) -> dict:
-    """``data`` with the schema's defaults of absent optional properties, one object level deep."""
-    out = dict(data)
-    for key, sub in schema.get("properties", {}).items():
-        if "default" in sub and key not in out:
-            out[key] = sub["default"]
-        if sub.get("type") == "object" and isinstance(out.get(key), dict):
-            out[key] = _with_defaults(out[key], sub)
-    return out
+def rig_schema() -> dict:
+    """The rig schema with the definitions it refers to: the aircraft schema's (the condition's blade
+    motion, the rotor) and the config schema's ``wake`` and ``acoustics`` sections."""
+    config = load_schema("config")["properties"]
+    return {**load_schema("rig"), "$defs": {**load_schema("aircraft")["$defs"], "wake": config["wake"],
+                                            "acoustics": config["acoustics"]}}
 
 
-def load_rotor_test(path: str | Path) -> dict:
-    """Read and validate one rotor test (``config/tests/*.yaml``, nps.rig.case) with its rotor.
+def rig_settings(rig: dict) -> dict:
+    """The campaign-configuration sections the study stages read, for a validated ``rig``: its own
+    ``resolution``, ``models``, ``wake`` (with BVI), ``acoustics`` and ``allow_outside_validity``, and the
+    config schema's default ``atmosphere`` (the metrics' absorption and broadband atmosphere; both are off
+    for a rig). Nothing comes from a campaign file."""
+    atmosphere = fill_defaults({}, load_schema("config")["properties"]["atmosphere"])
+    sections = {key: rig[key] for key in ("resolution", "models", "wake", "acoustics") if key in rig}
+    return {**sections, "atmosphere": atmosphere, "campaign": {"allow_outside_validity": rig["allow_outside_validity"]}}
 
-    Returns the test with the schema's defaults filled in, ``rotor_config`` (the rotor as the stages
-    use it: :func:`nps.rig.case.rotor_for_test`, validated like an aircraft's ``rotors[]`` entry, tables
-    resolved) and ``microphones_T`` / ``microphone_groups`` (positions in the test frame, group index).
+
+def load_rig(path: str | Path) -> dict:
+    """Read and validate one rig (``config/rigs/*.yaml``, nps.rig.case) with its rotor.
+
+    Returns the rig with the schema's defaults filled in, ``rotor_config`` (the rotor as the stages
+    use it: :func:`nps.rig.case.rotor_for_rig`, validated like an aircraft's ``rotors[]`` entry, tables
+    resolved), ``microphones_T`` / ``microphone_groups`` (positions in the test frame, group index) and
+    ``settings`` (:func:`rig_settings`).
     """
     from nps.noise.observers import ObserverError
-    from nps.rig.case import microphone_positions, rotor_for_test
+    from nps.rig.case import microphone_positions, rotor_for_rig
 
     path = Path(path)
-    # the condition's blade-motion fields refer to the aircraft schema's rotor definitions
-    schema = {**load_schema("rotor_test"), "$defs": load_schema("aircraft")["$defs"]}
-    data = _with_defaults(validate(read_yaml(path), schema, path), schema)
+    schema = rig_schema()
+    data = fill_defaults(validate(read_yaml(path), schema, path), schema)
     if path.stem != data["name"]:
         _raise(path, [("name", f"expected the file stem '{path.stem}', got '{data['name']}'")])
     ref, base = data["rotor"], path.parent
     if "file" in ref:
         rotor_file = base / ref["file"]
-        rotor = rotor_for_test(read_yaml(rotor_file), data["condition"])
-        aircraft_schema = load_schema("aircraft")
-        validate(rotor, {"$defs": aircraft_schema["$defs"], "$ref": "#/$defs/rotor"}, rotor_file)
+        rotor_schema = {"$defs": load_schema("aircraft")["$defs"], "$ref": "#/$defs/rotor"}
+        rotor = rotor_for_rig(read_yaml(rotor_file), data["condition"])
+        rotor = fill_defaults(validate(rotor, rotor_schema, rotor_file), rotor_schema)
     else:
         rotor_file = base / ref["aircraft"]
-        rotor = rotor_for_test(aircraft_rotor(load_aircraft(rotor_file), ref["name"], rotor_file), data["condition"])
+        rotor = rotor_for_rig(aircraft_rotor(load_aircraft(rotor_file), ref["name"], rotor_file), data["condition"])
     _raise(rotor_file, [(f"rotor '{rotor['name']}'{field[len('rotor'):]}", what)
                         for field, what in _rotor_sections(rotor, "rotor", rotor_file.parent)])
-    mode = rotor.get("control", "collective")
+    mode = rotor["control"]
     if mode != "fixed" and "thrust_N" not in data["condition"]:
         _raise(path, [("condition.thrust_N", f"required with control '{mode}' (the thrust target)")])
     try:
         positions, groups = microphone_positions(data["microphones"], base)
     except ObserverError as exc:
         raise ConfigError(f"{path}: microphones: {exc}") from None
-    return {**data, "rotor_config": rotor, "microphones_T": positions, "microphone_groups": groups}
+    return {**data, "rotor_config": rotor, "microphones_T": positions, "microphone_groups": groups,
+            "settings": rig_settings(data)}

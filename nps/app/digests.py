@@ -7,6 +7,11 @@ Everything else (columns, values, schema, the other metadata) enters the digest 
 
     python -m nps.app.digests RESULTS_DIR            # prints "<sha256>  <path>" lines
     python -m nps.app.digests RESULTS_DIR --check MANIFEST
+
+Bit-identity holds on one class of CPU, not across classes: NumPy dispatches its float64
+transcendental functions (sin, cos, exp, log) to AVX-512 implementations where the CPU has them,
+and those round differently in the last bit from the AVX2 ones. A manifest therefore belongs to
+the :func:`cpu_class` it was made on (``tiny_campaign.<class>.sha256``).
 """
 
 from __future__ import annotations
@@ -14,6 +19,7 @@ from __future__ import annotations
 import argparse
 import hashlib
 import io
+import platform
 import sys
 from pathlib import Path
 
@@ -33,6 +39,24 @@ def content_digest(path: Path, drop: tuple[str, ...] = ()) -> str:
 def digests(results: Path, drop: tuple[str, ...] = ()) -> dict[str, str]:
     """Relative artifact path → content digest (metadata keys ``drop`` removed), for every Parquet file under ``results``."""
     return {p.relative_to(results).as_posix(): content_digest(p, drop) for p in sorted(results.rglob("*.parquet"))}
+
+
+def cpu_class() -> str:
+    """The CPU class whose results are bit-identical: the machine and NumPy's float64 SIMD dispatch level
+    (``x86_64-avx512_skx``, ``x86_64-avx2`` or ``x86_64-baseline``; other machines by name)."""
+    from numpy._core._multiarray_umath import __cpu_features__ as features
+
+    machine = platform.machine()
+    if machine != "x86_64":
+        return machine
+    if features.get("AVX512_SKX"):
+        return f"{machine}-avx512_skx"
+    return f"{machine}-avx2" if features.get("AVX2") and features.get("FMA3") else f"{machine}-baseline"
+
+
+def manifest_path(directory: Path, name: str) -> Path:
+    """The manifest ``<directory>/<name>.<cpu_class>.sha256`` of this machine's CPU class."""
+    return Path(directory) / f"{name}.{cpu_class()}.sha256"
 
 
 def read_manifest(path: Path) -> dict[str, str]:

@@ -3,7 +3,7 @@
 Each estimate is the peak resident memory a stage adds above the interpreter with the NPS
 modules imported (:data:`INTERPRETER_BYTES`), as a fixed part plus bytes per element of its
 largest arrays. The coefficients are the largest ratios measured with ``ru_maxrss`` on the
-demonstration helicopter's main rotor (segment 3; docs/models/validity.md, "Memory"), so the
+demonstration helicopter's main rotor (segment 3; docs/reference/validity.md, "Memory"), so the
 estimates are upper bounds of those measurements. Bytes are SI (1 MB = 10⁶ B).
 
 Element counts:
@@ -182,7 +182,7 @@ RUNTIME_MIN = {
     "trim": (5, None), "loads": (5, "disk"), "observers": (5, None), "wake": (15, "wake"),
     "acoustics": (15, "signal"), "hsi": (15, "signal"), "metrics": (10, "signal"),
     "hsi_figure": (5, "signal"), "rotor_figures": (10, "disk"), "bvi_hotspot": (5, "signal"),
-    "rotor_maps": (5, "signal"), "study_maps": (5, None), "summary": (5, None),
+    "rotor_maps": (5, "signal"), "study_maps": (5, None), "summary": (5, None), "rig": (5, None), "carpet": (5, None),
 }
 BUNDLED_RESOLUTION = {"n_psi": 360, "n_r": 50, "wake_revolutions": 4, "samples_per_rev": 1024}
 BUNDLED_OBSERVERS, BUNDLED_ROTORS = 360, 2

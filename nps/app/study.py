@@ -1,6 +1,6 @@
 """Study summaries: per aircraft × segment, the numbers a designer reads first.
 
-Inputs are the stage artifacts of one aircraft and segment (docs/conventions.md): the trim
+Inputs are the stage artifacts of one aircraft and segment (docs/reference/conventions.md): the trim
 table, the loads summaries, the metrics tables per observer set and variant, and the wall time of
 each stage's jobs (read from the workflow's benchmark files by :mod:`nps.stages.study`).
 """

@@ -7,9 +7,9 @@ objects it already holds and returns its findings (``aircraft_findings`` before 
 ``broadband_findings``); :func:`enforce` turns findings into one :class:`ValidityError` line
 (default) or, with the campaign switch ``allow_outside_validity: true``, into warnings for the
 artifact metadata (``nps.validity_warnings``). Limits, their sources and the choices made where
-the literature gives a range: ``docs/models/validity.md``.
+the literature gives a range: ``docs/reference/validity.md``.
 
-Units SI, angles in rad, frames and advance-ratio signs of docs/conventions.md (μ_z > 0 when
+Units SI, angles in rad, frames and advance-ratio signs of docs/reference/conventions.md (μ_z > 0 when
 the free stream goes down through the disk, i.e. in climb).
 """
 
@@ -22,7 +22,7 @@ from typing import Iterable, Mapping, Sequence
 import numpy as np
 import pandas as pd
 
-from nps.rotor.bet import _MAX_CONTROL_RAD
+from nps.rotor.bet import MAX_CONTROL_RAD
 from nps.noise.broadband.pegg import peak_frequency_hz
 from nps.noise.metrics import STUDY_BANDS
 from nps.rotor.airfoils import LinearAirfoil
@@ -60,7 +60,7 @@ WAKE_SOURCE = ("oldest tip-vortex node at least one rotor diameter from its rele
                "phi R sqrt(mu^2 + lambda^2) (Beddoes geometry, thesis eq. 5.4-5.7), and at least one revolution")
 OBSERVER_CHORDS_MIN = 5.0
 OBSERVER_CHORD_SOURCE = ("compact-chord sources: the distance varies by c/2 across the chord, <= 10 % of the distance "
-                         "from 5 chords on (docs/models/validity.md)")
+                         "from 5 chords on (docs/reference/validity.md)")
 OBSERVER_RADII_MIN = 1.0
 OBSERVER_RADIUS_SOURCE = ("observer outside the sphere holding the blades: the acoustic analogy takes the observer in "
                           "a medium at rest (Farassat, NASA/TM-2007-214853), Pegg's level a far-field 1/r^2 law "
@@ -208,9 +208,9 @@ def check_controls(theta0_rad: float, theta1c_rad: float, theta1s_rad: float, na
     controls = {"theta0_rad": theta0_rad, "theta1c_rad": theta1c_rad, "theta1s_rad": theta1s_rad}
     key = max(controls, key=lambda k: abs(controls[k]))
     value = abs(controls[key])
-    if math.isfinite(value) and value < _MAX_CONTROL_RAD * (1.0 - 1e-9):
+    if math.isfinite(value) and value < MAX_CONTROL_RAD * (1.0 - 1e-9):
         return None
-    return Finding(f"rotor '{name}': trimmed control |{key}|", value, f"< {_MAX_CONTROL_RAD:g}", CONTROL_SOURCE, stage)
+    return Finding(f"rotor '{name}': trimmed control |{key}|", value, f"< {MAX_CONTROL_RAD:g}", CONTROL_SOURCE, stage)
 
 
 def minimum_wake_revolutions(mu: float, inflow_ratio: float) -> float:

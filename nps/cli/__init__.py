@@ -12,7 +12,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from nps.app.config import schema_default
+from nps.app.config import load_schema, schema_default
 
 
 class _Parser(argparse.ArgumentParser):
@@ -24,7 +24,7 @@ class _Parser(argparse.ArgumentParser):
 
 def parser(stage: str, description: str, validity: bool = False) -> argparse.ArgumentParser:
     """Argument parser of ``python -m nps <stage>`` with the common ``--debug`` option (and, for a stage
-    with validity checks, ``--allow-outside-validity``, the campaign switch of docs/models/validity.md)."""
+    with validity checks, ``--allow-outside-validity``, the campaign switch of docs/reference/validity.md)."""
     ap = _Parser(prog=f"python -m nps {stage}", description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--debug", action="store_true", help="show the traceback of an error")
     if validity:
@@ -36,6 +36,58 @@ def parser(stage: str, description: str, validity: bool = False) -> argparse.Arg
 def default(field: str):
     """Default of a campaign-configuration field (``config`` schema), e.g. ``resolution.n_psi``."""
     return schema_default("config", field)
+
+
+def boolean(text: str) -> bool:
+    """``true`` / ``false`` (any case) of a boolean option."""
+    if text.lower() not in ("true", "false"):
+        raise argparse.ArgumentTypeError(f"expected true or false, got {text!r}")
+    return text.lower() == "true"
+
+
+def schema_field(field: str, schema: str = "config") -> dict:
+    """The node of a dotted field of a schema (``config`` or ``rig``), e.g. ``wake.free.relaxation``."""
+    node = load_schema(schema)
+    for part in field.split("."):
+        node = node["properties"][part]
+    return node
+
+
+def option(ap: argparse.ArgumentParser, flag: str, field: str, *, schema: str = "config", **kwargs) -> argparse.Action:
+    """``ap.add_argument(flag, ...)`` for a field of ``schema`` (``config`` or ``rig``): default (None without
+    one), type, choices and fixed list length from the schema; ``kwargs`` add to or override them. The action
+    keeps the field as ``schema_field`` and the schema as ``schema_name`` (tests/unit/test_defaults.py checks
+    the defaults against the schema)."""
+    node = schema_field(field, schema)
+    spec = {"default": node.get("default"), "help": node.get("description", field.rsplit(".", 1)[-1]).replace("%", "%%")}
+    if "action" not in kwargs:
+        items = node.get("items", node) if node.get("type") == "array" else node
+        kind = items.get("type")
+        kind = next(k for k in kind if k != "null") if isinstance(kind, list) else kind
+        spec["type"] = {"integer": int, "number": float, "boolean": boolean}.get(kind, str)
+        if "enum" in items:
+            spec["choices"] = items["enum"]
+        if node.get("type") == "array":
+            fixed = node.get("minItems") is not None and node.get("minItems") == node.get("maxItems")
+            spec["nargs"] = node["minItems"] if fixed else "*"
+    action = ap.add_argument(flag, **{**spec, **kwargs})
+    action.schema_field, action.schema_name = field, schema
+    return action
+
+
+# config ``footprint.ground`` field -> option of the footprint and certification commands
+GROUND_OPTIONS = {"model": "--ground", "flow_resistivity_kPa_s_m2": "--flow-resistivity", "coherent": "--coherent"}
+
+
+def ground_options(ap: argparse.ArgumentParser) -> None:
+    """The ground options (:data:`GROUND_OPTIONS`), dest ``ground_<field>``."""
+    for field, flag in GROUND_OPTIONS.items():
+        option(ap, flag, f"footprint.ground.{field}", dest=f"ground_{field}")
+
+
+def ground(args: argparse.Namespace) -> dict:
+    """The ``ground`` params slice of the parsed :func:`ground_options`."""
+    return {field: getattr(args, f"ground_{field}") for field in GROUND_OPTIONS}
 
 
 def run_stage(stage: str, inputs: dict, outputs: dict, params: dict, debug: bool = False,

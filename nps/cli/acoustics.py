@@ -36,7 +36,7 @@ def main(argv: list[str]) -> int:
     try:
         aircraft = load_aircraft(args.aircraft)
         names = args.rotor or [r["name"] for r in aircraft["rotors"]]
-        hinges = {n: float(aircraft_rotor(aircraft, n, args.aircraft).get("hinge_offset_m", 0.0)) for n in names}
+        hinges = {n: float(aircraft_rotor(aircraft, n, args.aircraft)["hinge_offset_m"]) for n in names}
     except ConfigError as error:
         return fail(str(error))
     params = {"rotors": names, "hinge_offsets_m": hinges, "thickness": args.thickness, "chord_fractions": args.chord_fractions,

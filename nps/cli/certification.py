@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from nps.cli import default, fail, parser, run_stage
+from nps.cli import default, fail, ground, ground_options, option, parser, run_stage
 from nps.app.config import ConfigError, load_aircraft, load_mission
 
 
@@ -24,9 +24,9 @@ def main(argv: list[str]) -> int:
         ap.add_argument(f"--{name}-segment", default=default(f"certification.segments.{name}"),
                         help=f"mission segment flown in the {name} procedure")
         ap.add_argument(f"--{name}-hemisphere", required=True, help=f"source hemisphere of the {name} segment")
-    ap.add_argument("--vne-mps", type=float, help="never-exceed speed (overflight speed rule)")
-    ap.add_argument("--approach-min-speed-mps", type=float, help="lowest approved approach speed")
-    ap.add_argument("--ground", default=default("footprint.ground.model"), help="hard, delany_bazley, miki or none")
+    option(ap, "--vne-mps", "certification.vne_mps")
+    option(ap, "--approach-min-speed-mps", "certification.approach_min_speed_mps")
+    ground_options(ap)
     ap.add_argument("--no-absorption", action="store_true", help="skip ISO 9613-1 air absorption")
     ap.add_argument("--out-dir", required=True, help="directory of the certification artifacts")
     args = ap.parse_args(argv)
@@ -43,6 +43,6 @@ def main(argv: list[str]) -> int:
                "pnlt_figure": str(out / "pnlt.png"), "table_figure": str(out / "certification.png")}
     params = {"mission": mission, "aircraft": aircraft["name"], "max_mass_kg": aircraft["gross_weight_kg"],
               "segments": {p: getattr(args, f"{p}_segment") for p in procedures}, "vne_mps": args.vne_mps,
-              "approach_min_speed_mps": args.approach_min_speed_mps, "ground": {"model": args.ground},
+              "approach_min_speed_mps": args.approach_min_speed_mps, "ground": ground(args), "ground_as_written": ground(args),
               "absorption": not args.no_absorption}
     return run_stage("certification", inputs, outputs, params, args.debug)

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from nps.cli import default, fail, parser, run_stage
+from nps.cli import default, fail, ground, ground_options, parser, run_stage
 from nps.app.config import ConfigError, load_mission
 
 
@@ -34,8 +34,7 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--spacing-m", type=float, default=default("footprint.grid.spacing_m"))
     ap.add_argument("--height-m", type=float, default=default("footprint.grid.height_m"))
     ap.add_argument("--microphone", nargs="*", metavar="NAME=X,Y,Z", help="named microphones (m, mission frame)")
-    ap.add_argument("--ground", default=default("footprint.ground.model"), help="hard, delany_bazley, miki or none")
-    ap.add_argument("--flow-resistivity", type=float, default=default("footprint.ground.flow_resistivity_kPa_s_m2"))
+    ground_options(ap)
     ap.add_argument("--isa-delta-k", type=float, default=default("atmosphere.isa_delta_K"))
     ap.add_argument("--relative-humidity-pct", type=float, default=default("atmosphere.relative_humidity_pct"))
     ap.add_argument("--no-absorption", action="store_true", help="skip ISO 9613-1 air absorption")
@@ -53,7 +52,7 @@ def main(argv: list[str]) -> int:
     params = {"mission": mission, "aircraft": args.aircraft,
               "grid": {"x_range_m": args.x_range_m, "y_range_m": args.y_range_m, "spacing_m": args.spacing_m,
                        "height_m": args.height_m},
-              "microphones": mics, "ground": {"model": args.ground, "flow_resistivity_kPa_s_m2": args.flow_resistivity},
+              "microphones": mics, "ground": ground(args), "ground_as_written": ground(args),
               "atmosphere": {"isa_delta_K": args.isa_delta_k, "relative_humidity_pct": args.relative_humidity_pct},
               "absorption": not args.no_absorption}
     return run_stage("footprint", hemis, outputs, params, args.debug)

@@ -1,15 +1,16 @@
 """``python -m nps rotor``: thrust, torque, power and noise of one isolated rotor at one condition.
 
 The rotor comes from a rotor YAML (``--rotor-file``, one ``rotors[]`` entry of an aircraft file) or an
-aircraft file (``--aircraft`` with ``--rotor``); or give a whole rotor test with ``--test``
-(config/tests/NAME.yaml). The condition: rotor speed, control mode (``fixed``: given pitch and speed;
+aircraft file (``--aircraft`` with ``--rotor``); or give a whole rig with ``--rig``
+(config/rigs/NAME.yaml). The condition: rotor speed, control mode (``fixed``: given pitch and speed;
 ``rpm``: pitch given, speed trimmed to ``--thrust-n``; ``collective``: pitch trimmed to ``--thrust-n``),
 shaft angle (positive aft) and wind-tunnel speed (0: hover), atmosphere given directly. Microphones in
-the hub-fixed test frame T (x_T downstream, z_T up, y_T = z_T × x_T; docs/rotor_tests.md): ``--mic X Y Z``
+the hub-fixed test frame T (x_T downstream, z_T up, y_T = z_T × x_T; docs/reference/rigs.md): ``--mic X Y Z``
 (repeatable), ``--mic-file`` (CSV x_m,y_m,z_m or YAML), ``--arc-radius-m`` with ``--arc-angles-deg``.
 
-Runs the stages rotor_test, loads and acoustics into ``--out-dir`` and prints the rotor summary and the
-OASPL and BPF-harmonic levels at each microphone (also written to ``levels.csv``).
+Runs the stages rig, loads and acoustics into ``--out-dir`` with the rig's settings (from the options: the
+schema defaults of the rig's acoustics section) and prints the rotor summary and the OASPL and BPF-harmonic
+levels at each microphone (also written to ``levels.csv``).
 """
 
 from __future__ import annotations
@@ -18,16 +19,23 @@ from pathlib import Path
 
 import yaml
 
-from nps.cli import fail, parser, run_stage
+from nps.cli import default, fail, option, parser, run_stage
+from nps.core.atmosphere import isa
+
+N_HARMONICS = 5  # BPF harmonics listed in the printed table and levels.csv (an output choice, no rig field)
+ARC_PLANE = "xz"  # plane of an --arc-radius-m arc when --arc-plane is not given: the tunnel's vertical plane
 
 
-def _test_from_options(args) -> dict:
-    """A rotor-test mapping (nps/app/schemas/rotor_test.schema.yaml) from the options."""
+def _rig_from_options(args) -> dict:
+    """A rig mapping (nps/app/schemas/rig.schema.yaml) from the options."""
     if bool(args.rotor_file) == bool(args.aircraft):
-        raise ValueError("give exactly one of --rotor-file, --aircraft (with --rotor), --test")
+        raise ValueError("give exactly one of --rotor-file, --aircraft (with --rotor), --rig")
     rotor = {"file": str(Path(args.rotor_file).resolve())} if args.rotor_file else \
         {"aircraft": str(Path(args.aircraft).resolve()), "name": args.rotor}
-    condition = {"atmosphere": {"density_kg_m3": args.density_kg_m3, "speed_of_sound_mps": args.speed_of_sound_mps,
+    sea_level = isa(0.0)  # the atmosphere where density or speed of sound is not given
+    density = sea_level.density_kg_m3 if args.density_kg_m3 is None else args.density_kg_m3
+    speed_of_sound = sea_level.speed_of_sound_mps if args.speed_of_sound_mps is None else args.speed_of_sound_mps
+    condition = {"atmosphere": {"density_kg_m3": density, "speed_of_sound_mps": speed_of_sound,
                                 "viscosity_Pa_s": args.viscosity_pa_s},
                  "shaft_angle_deg": args.shaft_angle_deg, "tunnel_speed_mps": args.speed_mps}
     condition.update({k: v for k, v in (("rpm", args.rpm), ("omega_rad_s", args.omega_rad_s), ("control", args.control),
@@ -42,13 +50,14 @@ def _test_from_options(args) -> dict:
     if not mics:
         raise ValueError("microphones: give at least one of --mic, --mic-file, --arc-radius-m")
     resolution = {"n_psi": args.n_psi, "n_r": args.n_r, "samples_per_rev": args.samples_per_rev}
+    acoustics = {key: default(f"acoustics.{key}") for key in ("dual_compact_chord_fractions", "bvispl_harmonics")}
     return {"name": "rotor", "description": "python -m nps rotor", "rotor": rotor, "condition": condition,
-            "microphones": mics, "resolution": resolution}
+            "microphones": mics, "resolution": resolution, "acoustics": acoustics}
 
 
 def main(argv: list[str]) -> int:
     ap = parser("rotor", __doc__)
-    ap.add_argument("--test", help="a rotor test YAML instead of the rotor and condition options")
+    ap.add_argument("--rig", help="a rig YAML instead of the rotor and condition options")
     ap.add_argument("--rotor-file", help="rotor YAML (one rotors[] entry)")
     ap.add_argument("--aircraft", help="aircraft YAML holding the rotor")
     ap.add_argument("--rotor", help="rotor name in --aircraft")
@@ -59,55 +68,58 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--pitch-deg", type=float, help="blade pitch at 75 %% radius (control rpm, fixed)")
     ap.add_argument("--thrust-n", type=float, help="thrust target (control collective, rpm)")
     ap.add_argument("--no-flapping", action="store_true", help="rigid blades")
-    ap.add_argument("--shaft-angle-deg", type=float, default=0.0, help="shaft tilt toward downstream (default 0)")
-    ap.add_argument("--speed-mps", type=float, default=0.0, help="wind-tunnel speed (default 0: hover)")
-    ap.add_argument("--density-kg-m3", type=float, default=1.225)
-    ap.add_argument("--speed-of-sound-mps", type=float, default=340.294)
-    ap.add_argument("--viscosity-pa-s", type=float, default=1.789e-5)
+    option(ap, "--shaft-angle-deg", "condition.shaft_angle_deg", schema="rig")
+    option(ap, "--speed-mps", "condition.tunnel_speed_mps", schema="rig")
+    ap.add_argument("--density-kg-m3", type=float, help="air density (default: ISA sea level, 1.225)")
+    ap.add_argument("--speed-of-sound-mps", type=float, help="speed of sound (default: ISA sea level, 340.294)")
+    option(ap, "--viscosity-pa-s", "condition.atmosphere.viscosity_Pa_s", schema="rig")
     ap.add_argument("--mic", type=float, nargs=3, action="append", metavar=("X", "Y", "Z"), help="microphone in T (m)")
     ap.add_argument("--mic-file", help="microphone file in T: CSV x_m,y_m,z_m or YAML")
     ap.add_argument("--arc-radius-m", type=float, help="microphone arc about the hub")
     ap.add_argument("--arc-angles-deg", type=float, nargs="+", help="arc angles (any spacing)")
-    ap.add_argument("--arc-plane", choices=["xz", "yz", "xy"], default="xz")
-    ap.add_argument("--harmonics", type=int, default=5, help="BPF harmonics listed (default 5)")
-    ap.add_argument("--n-psi", type=int, default=72)
-    ap.add_argument("--n-r", type=int, default=30)
-    ap.add_argument("--samples-per-rev", type=int, default=1024)
+    ap.add_argument("--arc-plane", choices=["xz", "yz", "xy"], default=ARC_PLANE)
+    ap.add_argument("--harmonics", type=int, default=N_HARMONICS, help=f"BPF harmonics listed (default {N_HARMONICS})")
+    for key in ("n_psi", "n_r", "samples_per_rev"):
+        option(ap, f"--{key.replace('_', '-')}", f"resolution.{key}", schema="rig")
     ap.add_argument("--out-dir", required=True, help="output directory")
     args = ap.parse_args(argv)
     out = Path(args.out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    if args.test:
-        test_file = Path(args.test)
+    if args.rig:
+        rig_file = Path(args.rig)
     else:
         try:
-            test = _test_from_options(args)
+            rig = _rig_from_options(args)
         except ValueError as error:
             return fail(str(error))
-        test_file = out / "rotor.yaml"
-        test_file.write_text(yaml.safe_dump(test, sort_keys=False))
-    return run_test(test_file, out, args.harmonics, args.debug)
+        rig_file = out / "rotor.yaml"
+        rig_file.write_text(yaml.safe_dump(rig, sort_keys=False))
+    return run_rig(rig_file, out, args.harmonics, args.debug)
 
 
-def run_test(test_file: Path, out: Path, n_harmonics: int, debug: bool = False) -> int:
-    """Set-up, loads and acoustics of ``test_file`` into ``out``; print the loads and the levels."""
-    from nps.app.config import ConfigError, load_rotor_test
+def run_rig(rig_file: Path, out: Path, n_harmonics: int, debug: bool = False) -> int:
+    """Set-up, loads and acoustics of ``rig_file`` into ``out`` with the rig's settings (as the workflow's
+    jobs of aircraft ``rigs``, segment NAME); print the loads and the levels."""
+    from nps.app.config import ConfigError, load_rig
+    from nps.rig.case import RIG_AIRCRAFT
 
     try:
-        test = load_rotor_test(test_file)
+        rig = load_rig(rig_file)
     except ConfigError as error:
         return fail(str(error))
-    rotor, resolution = test["rotor_config"], test["resolution"]
+    rotor, settings = rig["rotor_config"], rig["settings"]
+    resolution, where = settings["resolution"], {"aircraft": RIG_AIRCRAFT, "segment": rig["name"]}
     trim, mics = str(out / "trim.parquet"), str(out / "microphones.parquet")
     steps = [
-        ("rotor_test", {"config": str(test_file)}, {"trim": trim, "observers": mics}, {}),
+        ("rig", {"config": str(rig_file)}, {"trim": trim, "observers": mics}, {}),
         ("loads", {"trim": trim}, {"loads": str(out / "loads")},
          {"rotors": {rotor["name"]: rotor}, "n_psi": resolution["n_psi"], "n_r": resolution["n_r"],
-          "aircraft": test["name"], "segment": "test"}),
+          "allow_outside_validity": settings["campaign"]["allow_outside_validity"], **where}),
         ("acoustics", {"disks": str(out / "loads"), "trim": trim, "observers": mics}, {"signals": str(out / "acoustics")},
-         {"rotors": [rotor["name"]], "thickness": test["models"]["thickness"], "chord_fractions": [0.13, 0.87],
-          "samples_per_rev": resolution["samples_per_rev"], "hinge_offsets_m": {rotor["name"]: rotor.get("hinge_offset_m", 0.0)},
-          "aircraft": test["name"], "segment": "test", "obsset": "microphones", "variant": "base"}),
+         {"rotors": [rotor["name"]], "thickness": settings["models"]["thickness"],
+          "chord_fractions": settings["acoustics"]["dual_compact_chord_fractions"],
+          "samples_per_rev": resolution["samples_per_rev"], "hinge_offsets_m": {rotor["name"]: rotor["hinge_offset_m"]},
+          "obsset": "microphones", "variant": "base", **where}),
     ]
     for stage, inputs, outputs, params in steps:
         status = run_stage(stage, inputs, outputs, params, debug)

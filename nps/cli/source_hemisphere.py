@@ -9,7 +9,7 @@ first rotor) by spherical spreading. Schema: nps.mission.source_hemisphere.
 
 from __future__ import annotations
 
-from nps.cli import fail, parser, provenance, run_stage
+from nps.cli import fail, option, parser, provenance, run_stage
 from nps.app.config import ConfigError, load_aircraft
 from nps.app.io import rotor_path
 from nps.noise.metrics import rotor_solidities
@@ -23,14 +23,15 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--signals", required=True, help="acoustics directory of the rotors' signals at that set")
     ap.add_argument("--hsi", help="HSI directory (its tonal total replaces thickness + loading)")
     ap.add_argument("--no-broadband", action="store_true", help="skip the broadband source")
-    ap.add_argument("--reference-radius-m", type=float, help="reference radius of the levels (default 10 R)")
+    option(ap, "--reference-radius-R", "footprint.reference_radius_R", dest="reference_radius_R",
+           help="reference radius of the levels, first-rotor radii (default %(default)s)")
     ap.add_argument("--out", required=True, help="source-hemisphere Parquet")
     args = ap.parse_args(argv)
     try:
         aircraft = load_aircraft(args.aircraft)
     except ConfigError as error:
         return fail(str(error))
-    radius = args.reference_radius_m or 10.0 * aircraft["rotors"][0]["radius_m"]
+    radius = args.reference_radius_R * aircraft["rotors"][0]["radius_m"]
     rotors = [r["name"] for r in aircraft["rotors"]]
     params = {"rotors": rotors, "solidity": rotor_solidities(aircraft), "broadband": not args.no_broadband,
               "reference_radius_m": radius, "aircraft": aircraft["name"], "segment": provenance(args.trim, "segment"),

@@ -8,7 +8,7 @@ observers are the ``--loudest`` ones (mean-square total pressure) and those list
 
 from __future__ import annotations
 
-from nps.cli import default, fail, parser, provenance, run_stage
+from nps.cli import default, fail, option, parser, provenance, run_stage
 from nps.app.config import ConfigError, load_aircraft
 from nps.app.io import rotor_path
 
@@ -23,7 +23,7 @@ def main(argv: list[str]) -> int:
                     help="BPF harmonics per source (default %(default)s)")
     ap.add_argument("--loudest", type=int, default=default("outputs.spectra_loudest"),
                     help="select the N loudest observers (default %(default)s)")
-    ap.add_argument("--observer", type=int, nargs="+", default=[], help="also select these observer ids")
+    option(ap, "--observer", "outputs.spectra_observers", nargs="+", help="also select these observer ids")
     ap.add_argument("--out", required=True, help="tone table Parquet (every observer)")
     ap.add_argument("--csv", required=True, help="tone table CSV (selected observers)")
     ap.add_argument("--spectra-out", required=True, help="narrowband spectra Parquet (selected observers)")

@@ -1,4 +1,4 @@
-"""Coordinate frames (docs/conventions.md): ground G, body B, hub H.
+"""Coordinate frames (docs/reference/conventions.md): ground G, body B, hub H.
 
 All frames are right-handed with z up: G and B have x forward and y to port; H has z along
 the thrust, x toward the body's aft direction projected onto the rotor plane.

@@ -3,13 +3,13 @@
 Frames and units. Mission frame E (m): x along the straight ground track from the trajectory's
 first point, y to port, z height above flat ground (z = 0 is the ground). The aircraft's level
 heading frame is E translated (heading along +x), so a hemisphere direction (map azimuth az,
-elevation el, docs/conventions.md "Observer azimuth") is the unit vector
+elevation el, docs/reference/conventions.md "Observer azimuth") is the unit vector
 d = (−cos az cos el, −sin az cos el, sin el) in E. Times in s, levels dB re 20 µPa, bands are the
 1/3-octave band numbers n of nps.noise.spectra (f_m = 1000·10^(n/10) Hz).
 
 Source. A :class:`Hemisphere` holds the band levels L_h(d, n) that observers moving with the
 aircraft (velocity V_h, Mach vector M_h = V_h/c) hear at radius r_h from the source centre in
-direction d, without absorption (docs/footprint.md). For a compact source in uniform motion
+direction d, without absorption (docs/reference/footprint.md). For a compact source in uniform motion
 the retarded solution at a point depends on the emission direction n (unit vector from the
 source's emission position to the point) and on the emission distance r_e = c (t − τ) only
 through p ∝ D(n)/r_e. A co-moving observer at r_h d heard a ray emitted at r_e,h = r_h/|n − M_h|
@@ -270,6 +270,112 @@ def _emission(knot_t, knot_p, vel, x0, x1, x2, t, c):
     return -1, t
 
 
+@kernel(inline=True)
+def _map_weights(h_el, n_az, h_daz, m0, m1, m2, mlen):
+    """Bilinear weights (e0, we, a0, a1, wa) of the hemisphere direction d = m/|m| on the map grid."""
+    n_el = h_el.size
+    el = np.degrees(np.arcsin(min(1.0, max(-1.0, m2 / mlen))))
+    az = np.degrees(np.arctan2(-m1, -m0))
+    if az < 0.0:
+        az += 360.0
+    if el <= h_el[0]:
+        e0 = 0
+        we = 0.0
+    elif el >= h_el[n_el - 1]:
+        e0 = n_el - 2
+        we = 1.0
+    else:
+        e0 = np.searchsorted(h_el, el) - 1
+        we = (el - h_el[e0]) / (h_el[e0 + 1] - h_el[e0])
+    fa = az / h_daz
+    a0 = int(np.floor(fa))
+    wa = fa - a0
+    a0 = a0 % n_az
+    a1 = (a0 + 1) % n_az
+    return e0, we, a0, a1, wa
+
+
+@kernel(inline=True)
+def _received_bands(h_levels, h, e0, we, a0, a1, wa, alpha, k, spread, re, delta, src, out):
+    """Mean-square band pressures ``out`` at the receiver before the ground: the map level less spreading and
+    absorption (``src``, per source band), shifted by δ bands (Doppler) into the receiver bands."""
+    n_b = src.size
+    shift = int(np.floor(delta))
+    frac = delta - shift
+    for b in range(n_b):
+        lo = (1.0 - wa) * h_levels[h, e0, a0, b] + wa * h_levels[h, e0, a1, b]
+        hi = (1.0 - wa) * h_levels[h, e0 + 1, a0, b] + wa * h_levels[h, e0 + 1, a1, b]
+        lev = (1.0 - we) * lo + we * hi
+        # absorption at the band's received frequency (band number b + δ, α linear between bands)
+        q = min(max(b + shift, 0), n_b - 2)
+        wq = min(max(b + delta - q, 0.0), 1.0)
+        att = (1.0 - wq) * alpha[k, q] + wq * alpha[k, q + 1]
+        src[b] = np.exp(_DB_TO_NEPER * (lev - spread - att * re)) if lev > LEVEL_FLOOR_DB else 0.0
+        out[b] = 0.0
+    for b in range(n_b):
+        t0 = b + shift
+        if 0 <= t0 < n_b:
+            out[t0] += (1.0 - frac) * src[b]
+        if 0 <= t0 + 1 < n_b:
+            out[t0 + 1] += frac * src[b]
+
+
+@kernel(inline=True)
+def _ground_band_gain(b, ratio, dr, sin_psi, rr, sin_lo, k_edge, ground_kind, coherent, beta):
+    """Ground gain 1 + a²|Q|² + 2a|Q|⟨cos(kΔr + φ_Q)⟩ of band b (module doc) and the updated sin(k_lo Δr) of the
+    next band (the hard ground's band average reuses it)."""
+    qa = 1.0
+    qp = 0.0
+    if ground_kind == 2:
+        q = _spherical_q(sin_psi, 0.5 * (k_edge[b] + k_edge[b + 1]) * rr, beta[b])
+        qa = abs(q)
+        qp = np.arctan2(q.imag, q.real)
+    mean_cos = 0.0
+    span = (k_edge[b + 1] - k_edge[b]) * dr
+    if not coherent:
+        mean_cos = 0.0
+    elif span <= 1e-9:
+        mean_cos = np.cos(k_edge[b] * dr + qp)
+    elif ground_kind == 2:
+        mean_cos = (np.sin(k_edge[b + 1] * dr + qp) - np.sin(k_edge[b] * dr + qp)) / span
+    elif span <= _INCOHERENT_SPAN:
+        sin_hi = np.sin(k_edge[b + 1] * dr)
+        mean_cos = (sin_hi - sin_lo) / span
+        sin_lo = sin_hi
+    return 1.0 + ratio * ratio * qa * qa + 2.0 * ratio * qa * mean_cos, sin_lo
+
+
+@kernel(inline=True)
+def _ground_and_weighting(out, x0, x1, x2, s0, s1, s2, re, k_edge, ground_kind, coherent, beta, a_weight,
+                          store_bands, bands_out, i, j):
+    """A-weighted mean square of the receiver bands ``out`` after the ground reflection (image source mirrored
+    in z = 0); the band levels (dB) into ``bands_out[i, j]`` when ``store_bands``."""
+    floor_msp = 10.0 ** (LEVEL_FLOOR_DB / 10.0)
+    ratio = 0.0
+    dr = 0.0
+    sin_psi = 1.0
+    rr = re
+    if ground_kind > 0:
+        i0 = x0 - s0
+        i1 = x1 - s1
+        i2 = x2 + s2  # receiver to image source (source mirrored in z = 0)
+        rr = np.sqrt(i0 * i0 + i1 * i1 + i2 * i2)
+        ratio = re / rr
+        dr = rr - re
+        sin_psi = (x2 + s2) / rr
+    sin_lo = np.sin(k_edge[0] * dr)
+    la_ms = 0.0
+    for b in range(out.size):
+        ms = out[b]
+        if ground_kind > 0:
+            gain, sin_lo = _ground_band_gain(b, ratio, dr, sin_psi, rr, sin_lo, k_edge, ground_kind, coherent, beta)
+            ms *= max(gain, 0.0)
+        la_ms += ms * a_weight[b]
+        if store_bands:
+            bands_out[i, j, b] = 10.0 * np.log10(ms) if ms > floor_msp else LEVEL_FLOOR_DB
+    return la_ms
+
+
 @kernel(parallel=True)
 def _propagate_kernel(rec, times, c, knot_t, knot_p, vel, hemi_of_seg, h_levels, h_el, h_daz, h_radius, h_mach,
                       alpha, a_weight, k_edge, ground_kind, coherent, beta, store_bands,
@@ -284,7 +390,6 @@ def _propagate_kernel(rec, times, c, knot_t, knot_p, vel, hemi_of_seg, h_levels,
     n_r = rec.shape[0]
     n_t = times.size
     n_b = a_weight.size
-    n_el = h_el.size
     n_az = h_levels.shape[2]
     floor_msp = 10.0 ** (LEVEL_FLOOR_DB / 10.0)
     for i in prange(n_r):
@@ -319,88 +424,14 @@ def _propagate_kernel(rec, times, c, knot_t, knot_p, vel, hemi_of_seg, h_levels,
             m1 = n1 - h_mach[h, 1]
             m2 = n2 - h_mach[h, 2]
             mlen = np.sqrt(m0 * m0 + m1 * m1 + m2 * m2)
-            el = np.degrees(np.arcsin(min(1.0, max(-1.0, m2 / mlen))))
-            az = np.degrees(np.arctan2(-m1, -m0))
-            if az < 0.0:
-                az += 360.0
-            # bilinear weights on the grid
-            if el <= h_el[0]:
-                e0 = 0
-                we = 0.0
-            elif el >= h_el[n_el - 1]:
-                e0 = n_el - 2
-                we = 1.0
-            else:
-                e0 = np.searchsorted(h_el, el) - 1
-                we = (el - h_el[e0]) / (h_el[e0 + 1] - h_el[e0])
-            fa = az / h_daz
-            a0 = int(np.floor(fa))
-            wa = fa - a0
-            a0 = a0 % n_az
-            a1 = (a0 + 1) % n_az
+            e0, we, a0, a1, wa = _map_weights(h_el, n_az, h_daz, m0, m1, m2, mlen)
             spread = 20.0 * np.log10(re * mlen / h_radius[h])
             # Doppler: shift by δ bands with the trajectory's Mach number toward the receiver
             mr = (vel[k, 0] * n0 + vel[k, 1] * n1 + vel[k, 2] * n2) / c
             delta = -10.0 * np.log10(1.0 - mr)
-            shift = int(np.floor(delta))
-            frac = delta - shift
-            for b in range(n_b):
-                lo = (1.0 - wa) * h_levels[h, e0, a0, b] + wa * h_levels[h, e0, a1, b]
-                hi = (1.0 - wa) * h_levels[h, e0 + 1, a0, b] + wa * h_levels[h, e0 + 1, a1, b]
-                lev = (1.0 - we) * lo + we * hi
-                # absorption at the band's received frequency (band number b + δ, α linear between bands)
-                q = min(max(b + shift, 0), n_b - 2)
-                wq = min(max(b + delta - q, 0.0), 1.0)
-                att = (1.0 - wq) * alpha[k, q] + wq * alpha[k, q + 1]
-                src[b] = np.exp(_DB_TO_NEPER * (lev - spread - att * re)) if lev > LEVEL_FLOOR_DB else 0.0
-                out[b] = 0.0
-            for b in range(n_b):
-                t0 = b + shift
-                if 0 <= t0 < n_b:
-                    out[t0] += (1.0 - frac) * src[b]
-                if 0 <= t0 + 1 < n_b:
-                    out[t0 + 1] += frac * src[b]
-            # absorption and ground reflection per receiver band
-            ratio = 0.0
-            dr = 0.0
-            sin_psi = 1.0
-            rr = re
-            if ground_kind > 0:
-                i0 = x0 - s0
-                i1 = x1 - s1
-                i2 = x2 + s2  # receiver to image source (source mirrored in z = 0)
-                rr = np.sqrt(i0 * i0 + i1 * i1 + i2 * i2)
-                ratio = re / rr
-                dr = rr - re
-                sin_psi = (x2 + s2) / rr
-            sin_lo = np.sin(k_edge[0] * dr)
-            la_ms = 0.0
-            for b in range(n_b):
-                ms = out[b]
-                if ground_kind > 0:
-                    qa = 1.0
-                    qp = 0.0
-                    if ground_kind == 2:
-                        q = _spherical_q(sin_psi, 0.5 * (k_edge[b] + k_edge[b + 1]) * rr, beta[b])
-                        qa = abs(q)
-                        qp = np.arctan2(q.imag, q.real)
-                    mean_cos = 0.0
-                    span = (k_edge[b + 1] - k_edge[b]) * dr
-                    if not coherent:
-                        mean_cos = 0.0
-                    elif span <= 1e-9:
-                        mean_cos = np.cos(k_edge[b] * dr + qp)
-                    elif ground_kind == 2:
-                        mean_cos = (np.sin(k_edge[b + 1] * dr + qp) - np.sin(k_edge[b] * dr + qp)) / span
-                    elif span <= _INCOHERENT_SPAN:
-                        sin_hi = np.sin(k_edge[b + 1] * dr)
-                        mean_cos = (sin_hi - sin_lo) / span
-                        sin_lo = sin_hi
-                    gain = 1.0 + ratio * ratio * qa * qa + 2.0 * ratio * qa * mean_cos
-                    ms *= max(gain, 0.0)
-                la_ms += ms * a_weight[b]
-                if store_bands:
-                    bands_out[i, j, b] = 10.0 * np.log10(ms) if ms > floor_msp else LEVEL_FLOOR_DB
+            _received_bands(h_levels, h, e0, we, a0, a1, wa, alpha, k, spread, re, delta, src, out)
+            la_ms = _ground_and_weighting(out, x0, x1, x2, s0, s1, s2, re, k_edge, ground_kind, coherent, beta,
+                                          a_weight, store_bands, bands_out, i, j)
             la_out[i, j] = 10.0 * np.log10(la_ms) if la_ms > floor_msp else LEVEL_FLOOR_DB
 
 

@@ -7,7 +7,7 @@ fly the aircraft's noise along any path (nps.mission.propagation). Schema (units
 | column | type | meaning |
 | --- | --- | --- |
 | ``observer`` | int32 | hemisphere observer id (observers artifact) |
-| ``azimuth_deg``, ``elevation_deg`` | float64 | map direction (docs/conventions.md), from the centre |
+| ``azimuth_deg``, ``elevation_deg`` | float64 | map direction (docs/reference/conventions.md), from the centre |
 | ``source`` | str | ``thickness``, ``loading``, ``hsi`` (when HSI-processed), ``broadband``, ``total`` |
 | ``band`` | int32 | 1/3-octave band number n (f_m = 1000·10^(n/10) Hz), −20 (10 Hz) … 10 (10 kHz) |
 | ``center_hz`` | float64 | exact mid-band frequency |
@@ -30,7 +30,7 @@ HSI and broadband levels are exactly those of the metrics artifacts without abso
 Radius: one hemisphere stands for all rotors about one centre, exact only in the far field of
 the whole rotor system. At 10 R the helicopter's tail rotor (1.3 R behind the main hub) is seen
 from a direction up to 7° off and 5 % nearer than from the centre; the direct-F1A cross-check
-(tests/validation/test_footprint_f1a.py, docs/footprint.md) misses by up to 1.8 dB with a 10 R
+(tests/validation/test_footprint_f1a.py, docs/reference/footprint.md) misses by up to 1.8 dB with a 10 R
 hemisphere and by at most 0.6 dB with a 20 R one. The product is therefore computed on a
 far-field hemisphere (20 R, observer set ``source`` of config/config.yaml) and referred back to
 the 10 R reference by spherical spreading (``reference_radius_m``).

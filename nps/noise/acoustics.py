@@ -1,6 +1,6 @@
 """Compact Farassat 1A: pressure time histories of compact line sources at any observers.
 
-Model (docs/models/acoustics.md). Every source node is a compact point that moves along a
+Model (docs/reference/acoustics.md). Every source node is a compact point that moves along a
 known path y(τ) in the ground frame G (medium at rest) and carries
 
 * a force ``f`` (N) exerted *on the fluid* (the loading dipole, or a dual-compact thickness

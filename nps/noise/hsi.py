@@ -1,7 +1,7 @@
 """High-speed-impulsive (HSI) noise: amplify, shear and shock-fit each rotor's signal (thesis ch. 6).
 
 Each rotor's pressure signal (thickness + loading, one reference-rotor revolution on the
-uniform grid of docs/conventions.md "Pressure signals") is processed per observer with that
+uniform grid of docs/reference/conventions.md "Pressure signals") is processed per observer with that
 rotor's own maximum radiation Mach number M_r and radiation distance r; the processed rotors are
 then summed (:func:`combine_rotors`). Steps, in order:
 
@@ -80,7 +80,7 @@ def shear_angle_rad(mach_r) -> np.ndarray:
 class HsiRotor:
     """What the HSI model needs of one rotor (one ``trim.parquet`` row, SI units).
 
-    ``motion`` gives the hub path and blade azimuths in G (docs/conventions.md); ``radius_m``
+    ``motion`` gives the hub path and blade azimuths in G (docs/reference/conventions.md); ``radius_m``
     is the tip radius; the air state sets ρ c² and the Mach numbers.
     """
 
@@ -314,7 +314,7 @@ def process(
     *,
     intermediate_observer: int | None = None,
 ) -> HsiResult:
-    """HSI processing of one rotor's pressure-signal table (docs/conventions.md artifacts).
+    """HSI processing of one rotor's pressure-signal table (docs/reference/conventions.md artifacts).
 
     ``signals``: columns observer, group (thickness, loading), time_s, p_Pa, one period on a
     uniform grid; the rotor total (sum of the groups) is processed. ``observers``: observer,

@@ -3,7 +3,7 @@
 Kept apart from :mod:`nps.noise.hsi` so that code which only sums or plots HSI signals does not import
 numba; :mod:`nps.noise.hsi` imports this module when it first needs a kernel. All kernels are declared
 with :func:`nps.core.jit.kernel`. Units: SI (m, s, m/s, rad, Pa); frames: the ground frame G of
-docs/conventions.md. Arrays are float64 unless stated.
+docs/reference/conventions.md. Arrays are float64 unless stated.
 
 Shock fit (Hopf–Lax / Whitham): along the polyline (t_j, p_j), segment j (t_j → t_j+1, linear p
 with slope g_j) carries Ψ_j(x) = Ψ(t_j) + σ[(p_j − p_ref)(x − t_j) + ½ g_j (x − t_j)²], the running

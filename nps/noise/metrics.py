@@ -18,7 +18,7 @@ Levels in dB re 20 µPa, frequencies in Hz, times in s, mean-square pressures (M
   Appendix J); L_Amax = max_k L_A,k.
 
 The metrics stage (:func:`observer_set_metrics`, :func:`metrics_tables`) works on the periodic
-one-revolution signals of docs/conventions.md: their spectra are taken *without a window*
+one-revolution signals of docs/reference/conventions.md: their spectra are taken *without a window*
 (every FFT line is an exact rotor harmonic, Parseval holds exactly, no leakage between the BVISPL
 harmonics and the others); windows are for non-periodic records such as the half-second records
 of a flyover (:func:`nps.noise.spectra.band_level_records`).
@@ -374,7 +374,7 @@ def metrics_tables(
 ) -> tuple[pd.DataFrame, pd.DataFrame, ObserverSetLevels]:
     """Metrics and band tables of one aircraft × segment × observer set × variant.
 
-    ``signals``/``hsi_signals``: rotor name → pressure-signal table (docs/conventions.md; a
+    ``signals``/``hsi_signals``: rotor name → pressure-signal table (docs/reference/conventions.md; a
     ``total`` group, the sum of the others, is ignored);
     ``observers``: observers artifact; ``trim``: trim artifact (first row = reference rotor,
     whose BPF defines BVISPL); ``solidity``: rotor → σ (blade area A_b = σ π R², C̄_L = 6 C_T/σ);

@@ -7,7 +7,7 @@ sets; ``grid_x_m``, ``grid_y_m`` for ground grids). Observers either stay in G (
 move with the aircraft (velocity = aircraft velocity V_G): then their position relative to
 the aircraft is fixed, as in the thesis' hemisphere.
 
-Directions follow the map convention of docs/conventions.md: azimuth from straight behind
+Directions follow the map convention of docs/reference/conventions.md: azimuth from straight behind
 toward the main rotor's advancing side (starboard for the bundled aircraft), 180° ahead,
 elevation from the horizontal, negative below; d = (−cos az cos el, −sin az cos el, sin el).
 """
@@ -27,8 +27,8 @@ class ObserverError(ValueError):
 
 
 KINDS = ("point", "hemisphere", "sphere", "points_ahead", "ground_grid")
-# stages whose artifact is an observer table: the campaign observer sets and a rotor test's microphones (nps.rig.case)
-OBSERVER_STAGES = ("observers", "rotor_test")
+# stages whose artifact is an observer table: the campaign observer sets and a rig's microphones (nps.rig.case)
+OBSERVER_STAGES = ("observers", "rig")
 
 
 def _table(position_m: np.ndarray, velocity_mps, extra: Mapping[str, np.ndarray]) -> pd.DataFrame:
@@ -93,7 +93,7 @@ def observer_set(spec: Mapping, centre_m, reference_radius_m: float, aircraft_ve
     """Build a configured observer set (``observer_sets.<name>`` of config/config.yaml).
 
     ``centre_m``: centre in G at t = 0 of hemispheres and points ahead; a ground grid is centred
-    ``height_below_m`` below the CG (the origin of G at t = 0, docs/conventions.md); ``point``
+    ``height_below_m`` below the CG (the origin of G at t = 0, docs/reference/conventions.md); ``point``
     sets list ``positions_m``, offsets [x, y, z] (m, G axes) from ``centre_m``;
     radii in ``radius_R`` are multiples of ``reference_radius_m``; ``moving`` (default true)
     gives the observers the aircraft velocity.
@@ -144,7 +144,7 @@ def observer_centre(trim: pd.DataFrame, rotors: Sequence[str], what: str = "trim
 def with_directions(table: pd.DataFrame, centre_m) -> pd.DataFrame:
     """Add ``azimuth_deg`` and ``elevation_deg`` of each observer seen from ``centre_m`` when absent.
 
-    Inverse of d = (−cos az cos el, −sin az cos el, sin el) (docs/conventions.md); az in [0, 360),
+    Inverse of d = (−cos az cos el, −sin az cos el, sin el) (docs/reference/conventions.md); az in [0, 360),
     0 for an observer straight above or below.
     """
     if {"azimuth_deg", "elevation_deg"} <= set(table.columns):

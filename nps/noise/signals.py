@@ -3,7 +3,7 @@
 A signal table has one row per observer × source group × sample: ``observer`` (int32), ``group``
 (categorical: ``thickness``, ``loading``, ``total``, ``hsi`` …), ``time_s`` (reception time on a
 uniform grid shared by all observers and groups) and ``p_Pa`` (acoustic pressure, Pa).
-Canonical order: observer, then group, then time (docs/conventions.md "Pressure signals").
+Canonical order: observer, then group, then time (docs/reference/conventions.md "Pressure signals").
 This module converts between that table and arrays ``(n_obs, n_groups, n_samples)``; it does no
 file I/O (``nps.app.io`` reads and writes artifacts) and knows nothing about rotors.
 """

@@ -1,6 +1,6 @@
 """Compact acoustic sources for the F1A solver (nps.noise.acoustics): a rotor from its disk table and trim row, or long source tables.
 
-Rotor sources, per blade (docs/conventions.md for frames and signs):
+Rotor sources, per blade (docs/reference/conventions.md for frames and signs):
 
 * the **lifting line** at the pitch axis (quarter chord) carries the force the blade exerts on
   the fluid, −(fx, fz) of the disk table: in the rotating frame (e_r, e_t, z_H), with e_t the
@@ -13,7 +13,7 @@ Rotor sources, per blade (docs/conventions.md for frames and signs):
     medium (ground frame), e_c the chord direction toward the leading edge, A the section area,
     D the line separation. In the compact limit of a section in steady motion this is exactly the
     compact monopole ρ0 A dr ∂²/∂t²[1/(4π r|1−M_r|)]; at finite chord it is that monopole
-    averaged over a box-shaped chordwise thickness distribution (docs/models/acoustics.md has the
+    averaged over a box-shaped chordwise thickness distribution (docs/reference/acoustics.md has the
     derivation and why the thesis' ±ρ0c²·t·dr along the chord was rejected);
   - ``compact_monopole``: the lifting-line nodes also carry the volume A·dr
     (ANOPP2 / AcousticAnalogies.jl model).
@@ -148,6 +148,74 @@ def _blade_components(disk: Mapping[str, np.ndarray], model: ThicknessModel, hin
     return lines
 
 
+def _air_velocity_rotating(motion: RotorMotion, n_psi: int) -> np.ndarray:
+    """Flight velocity in the blade-fixed rotating frame at the table's azimuths, (n_psi, 1, 3) m/s."""
+    s = motion.rotation_sign
+    psi_table = 2.0 * np.pi * np.arange(n_psi) / n_psi
+    v_h = motion.r_gh.T @ np.asarray(motion.velocity_mps, dtype=float)
+    return np.stack([v_h[0] * np.cos(psi_table) + v_h[1] * s * np.sin(psi_table),
+                     -v_h[0] * np.sin(psi_table) + v_h[1] * s * np.cos(psi_table),
+                     np.full(n_psi, v_h[2])], axis=-1)[:, None, :]
+
+
+def _rotating_kinematics(lines, omega: float, dpsi: float, air_rot: np.ndarray, c0_mps: float, n_r: int):
+    """Rotating-frame position, velocity, acceleration, jerk, force and force rate of every line, stacked along
+    the source axis ((n_psi, n_line·n_r, 3) each), their group names and volumes; refuses supersonic lines."""
+    pos_c, vel_c, acc_c, jerk_c, frc_c, frd_c, groups_d, volumes = [], [], [], [], [], [], [], []
+    for q, g, group, volume in lines:
+        d1 = _rotating_derivative(q, dpsi)
+        speed = float(np.linalg.norm(omega * d1 + air_rot, axis=-1).max())
+        if not speed < c0_mps:
+            raise AcousticsError(f"disk table: a {group} line moves at {speed:.1f} m/s relative to the air, not below "
+                                 f"c0 = {c0_mps} m/s; the compact F1A needs subsonic sources")
+        d2 = _rotating_derivative(d1, dpsi)
+        d3 = _rotating_derivative(d2, dpsi)
+        pos_c.append(q)
+        vel_c.append(omega * d1)
+        acc_c.append(omega**2 * d2)
+        jerk_c.append(omega**3 * d3)
+        frc_c.append(g)
+        frd_c.append(omega * _rotating_derivative(g, dpsi))
+        groups_d.append(np.full(n_r, group, dtype=object))
+        volumes.append(np.broadcast_to(volume, (n_r,)))
+    stack = [np.concatenate(a, axis=1) for a in (pos_c, vel_c, acc_c, jerk_c, frc_c, frd_c)]
+    return stack, np.concatenate(groups_d), np.concatenate(volumes).astype(float)
+
+
+def _source_steps(tau_range_s, n_psi: int, n_blades: int, period: float) -> tuple[np.ndarray, list[int]]:
+    """Source-time steps (units of T/n_psi) and blades: blade 0 over one revolution (periodic), else every blade
+    over ``tau_range_s``."""
+    if tau_range_s is None:
+        return np.arange(n_psi), [0]
+    if n_psi % n_blades:
+        raise AcousticsError(f"disk table: n_psi = {n_psi} must be divisible by n_blades = {n_blades} for stationary observers")
+    steps = np.arange(int(np.floor(tau_range_s[0] / period * n_psi)), int(np.ceil(tau_range_s[1] / period * n_psi)) + 1)
+    return steps, list(range(n_blades))
+
+
+def _ground_frame_lines(stack, motion: RotorMotion, steps: np.ndarray, blades: list[int], tau: np.ndarray,
+                        n_psi: int) -> list[np.ndarray]:
+    """The six rotating-frame components of every blade at source times ``tau`` in the ground frame (position
+    and velocity with the hub's flight added), each (n_blade·n_source, n_tau, 3)."""
+    omega, s, n_blades, r_gh = motion.omega_rad_s, motion.rotation_sign, motion.n_blades, motion.r_gh
+    out = [[] for _ in range(6)]
+    for k in blades:
+        index = (steps + k * n_psi // n_blades) % n_psi
+        psi = omega * tau + 2.0 * np.pi * k / n_blades
+        e_r = np.stack([np.cos(psi), s * np.sin(psi), np.zeros_like(psi)], axis=-1)
+        e_t = np.stack([-np.sin(psi), s * np.cos(psi), np.zeros_like(psi)], axis=-1)
+        basis = np.stack([e_r, e_t, np.broadcast_to([0.0, 0.0, 1.0], e_r.shape)], axis=-1)  # (n_tau, 3 H, 3 comp)
+        to_g = np.einsum("gh,thc->tgc", r_gh, basis)
+        for slot, comp in enumerate(stack):
+            vec = np.einsum("tgc,tnc->ntg", to_g, comp[index])
+            if slot == 0:
+                vec = vec + (motion.hub_position_m[None, :] + tau[:, None] * motion.velocity_mps[None, :])[None]
+            elif slot == 1:
+                vec = vec + motion.velocity_mps[None, None, :]
+            out[slot].append(vec)
+    return [np.ascontiguousarray(np.concatenate(a, axis=0)) for a in out]
+
+
 def rotor_sources(disk: pd.DataFrame, motion: RotorMotion, *, thickness: ThicknessModel = ThicknessModel(),
                   hinge_offset_m: float = 0.0, rho0_kg_m3: float, c0_mps: float,
                   tau_range_s: tuple[float, float] | None = None) -> CompactSources:
@@ -166,63 +234,13 @@ def rotor_sources(disk: pd.DataFrame, motion: RotorMotion, *, thickness: Thickne
     if not omega > 0:
         raise AcousticsError(f"trim row: omega_rad_s must be positive, got {omega}")
     period = 2.0 * np.pi / omega
-    s = motion.rotation_sign
-    psi_table = 2.0 * np.pi * np.arange(n_psi) / n_psi
-    v_h = motion.r_gh.T @ np.asarray(motion.velocity_mps, dtype=float)
-    air_rot = np.stack([v_h[0] * np.cos(psi_table) + v_h[1] * s * np.sin(psi_table),
-                        -v_h[0] * np.sin(psi_table) + v_h[1] * s * np.cos(psi_table),
-                        np.full(n_psi, v_h[2])], axis=-1)[:, None, :]
+    air_rot = _air_velocity_rotating(motion, n_psi)
     lines = _blade_components(arrays, thickness, hinge_offset_m, rho0_kg_m3, omega, air_rot)
-
-    pos_c, vel_c, acc_c, jerk_c, frc_c, frd_c, groups_d, volumes = [], [], [], [], [], [], [], []
-    for q, g, group, volume in lines:
-        d1 = _rotating_derivative(q, dpsi)
-        speed = float(np.linalg.norm(omega * d1 + air_rot, axis=-1).max())
-        if not speed < c0_mps:
-            raise AcousticsError(f"disk table: a {group} line moves at {speed:.1f} m/s relative to the air, not below "
-                                 f"c0 = {c0_mps} m/s; the compact F1A needs subsonic sources")
-        d2 = _rotating_derivative(d1, dpsi)
-        d3 = _rotating_derivative(d2, dpsi)
-        pos_c.append(q)
-        vel_c.append(omega * d1)
-        acc_c.append(omega**2 * d2)
-        jerk_c.append(omega**3 * d3)
-        frc_c.append(g)
-        frd_c.append(omega * _rotating_derivative(g, dpsi))
-        groups_d.append(np.full(n_r, group, dtype=object))
-        volumes.append(np.broadcast_to(volume, (n_r,)))
-    # (n_psi, n_line*n_r, 3) rotating components
-    stack = [np.concatenate(a, axis=1) for a in (pos_c, vel_c, acc_c, jerk_c, frc_c, frd_c)]
-    group_names = np.concatenate(groups_d)
-    volume = np.concatenate(volumes).astype(float)
-
+    stack, group_names, volume = _rotating_kinematics(lines, omega, dpsi, air_rot, c0_mps, n_r)
     n_blades = motion.n_blades
-    if tau_range_s is None:
-        steps = np.arange(n_psi)
-        blades = [0]
-    else:
-        if n_psi % n_blades:
-            raise AcousticsError(f"disk table: n_psi = {n_psi} must be divisible by n_blades = {n_blades} for stationary observers")
-        steps = np.arange(int(np.floor(tau_range_s[0] / period * n_psi)), int(np.ceil(tau_range_s[1] / period * n_psi)) + 1)
-        blades = list(range(n_blades))
+    steps, blades = _source_steps(tau_range_s, n_psi, n_blades, period)
     tau = steps * period / n_psi
-    r_gh = motion.r_gh
-    out = [[] for _ in range(6)]
-    for k in blades:
-        index = (steps + k * n_psi // n_blades) % n_psi
-        psi = omega * tau + 2.0 * np.pi * k / n_blades
-        e_r = np.stack([np.cos(psi), s * np.sin(psi), np.zeros_like(psi)], axis=-1)
-        e_t = np.stack([-np.sin(psi), s * np.cos(psi), np.zeros_like(psi)], axis=-1)
-        basis = np.stack([e_r, e_t, np.broadcast_to([0.0, 0.0, 1.0], e_r.shape)], axis=-1)  # (n_tau, 3 H, 3 comp)
-        to_g = np.einsum("gh,thc->tgc", r_gh, basis)
-        for slot, comp in enumerate(stack):
-            vec = np.einsum("tgc,tnc->ntg", to_g, comp[index])
-            if slot == 0:
-                vec = vec + (motion.hub_position_m[None, :] + tau[:, None] * motion.velocity_mps[None, :])[None]
-            elif slot == 1:
-                vec = vec + motion.velocity_mps[None, None, :]
-            out[slot].append(vec)
-    arrays6 = [np.ascontiguousarray(np.concatenate(a, axis=0)) for a in out]
+    arrays6 = _ground_frame_lines(stack, motion, steps, blades, tau, n_psi)
     names = np.tile(group_names, len(blades))
     volume = np.tile(volume, len(blades))
     groups = (LOADING, THICKNESS)
@@ -265,7 +283,7 @@ def radiate_rotor(disk: pd.DataFrame, trim_row, observers: Observers, grid: Time
                   hinge_offset_m: float = 0.0) -> np.ndarray:
     """Pressure (Pa) of one rotor, shape (n_obs, 2, n_samples), groups (loading, thickness).
 
-    ``disk``: disk table (docs/conventions.md), ``trim_row``: the rotor's ``trim.parquet`` row
+    ``disk``: disk table (docs/reference/conventions.md), ``trim_row``: the rotor's ``trim.parquet`` row
     (kinematics, ρ0 and c0). Observers moving with the aircraft use the periodic one-blade
     path (exact periodicity and blade symmetry); any other observers get all blades over the
     source-time span their window needs.

@@ -7,7 +7,7 @@ Each tone is reported as
     p_m(t) = a_m cos(2π f_m t + φ_m),  f_m = m·BPF,
     SPL_m = 20 log10((a_m/√2) / 20 µPa),  φ_m in (−π, π],
 
-t measured from t = 0 of docs/conventions.md (blade 0 of every rotor at ψ = 0, CG at the ground
+t measured from t = 0 of docs/reference/conventions.md (blade 0 of every rotor at ψ = 0, CG at the ground
 origin), whatever the first sample time of the record. Equivalently p(t) = Σ_m Re(C_m e^{+i 2π f_m t})
 with the complex amplitude C_m = a_m e^{iφ_m} (Pa, peak).
 
@@ -109,7 +109,7 @@ def _rotor_pressures(signals: Mapping[str, pd.DataFrame], rotors) -> tuple[np.nd
 def tone_table(signals: Mapping[str, pd.DataFrame], trim: pd.DataFrame, n_harmonics: int) -> pd.DataFrame:
     """Tone table of an aircraft at one observer set: one row per observer × source × harmonic.
 
-    ``signals``: rotor name → signal table (docs/conventions.md; all rotors on one grid);
+    ``signals``: rotor name → signal table (docs/reference/conventions.md; all rotors on one grid);
     ``trim``: trim artifact, rows in aircraft order, the first is the reference rotor.
     ``source`` is a rotor name (that rotor's signal, all groups: harmonics m of its own BPF) or
     ``total`` (harmonics m of the reference rotor's BPF: the sum of the complex amplitudes of every

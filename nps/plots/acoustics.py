@@ -1,7 +1,7 @@
 """Figures of the acoustics stage: pressure time histories of several observers, per source group
 (thickness, loading, summed over the aircraft's rotors) and total.
 
-Observers are picked by direction in the map convention of docs/conventions.md (azimuth from
+Observers are picked by direction in the map convention of docs/reference/conventions.md (azimuth from
 straight behind toward the main rotor's advancing side, 180° ahead; elevation negative below)
 plus the loudest observer of the set. Hemisphere maps of any level are drawn by
 :func:`nps.plots.maps.hemisphere_map` (thesis convention: ahead at the centre, advancing side on

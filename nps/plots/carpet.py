@@ -1,5 +1,5 @@
-"""Level carpet on a microphone plane of a rotor test (test frame T: x_T downstream, y_T toward the
-advancing side of a counterclockwise rotor; docs/rotor_tests.md), viewed from above."""
+"""Level carpet on a microphone plane of a rig (test frame T: x_T downstream, y_T toward the
+advancing side of a counterclockwise rotor; docs/reference/rigs.md), viewed from above."""
 
 from __future__ import annotations
 

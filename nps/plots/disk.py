@@ -138,7 +138,7 @@ def loads_figure(table: pd.DataFrame, path: str | os.PathLike, *, rotation_sign:
     """Eight-panel disk figure of a loads (or BVI) disk table, written to ``path`` (PNG).
 
     Panels: F_z, roll and pitch moment contributions of F_z about the hub (hub-frame signs of
-    docs/conventions.md), λ, U_P, U_T, α and Mach; the dashed white line is U_T = 0.
+    docs/reference/conventions.md), λ, U_P, U_T, α and Mach; the dashed white line is U_T = 0.
     """
     data = table.copy()
     data["roll_contribution"] = rotation_sign * data["r_m"] * np.sin(data["psi_rad"]) * data["fz_N_per_m"]

@@ -1,4 +1,4 @@
-"""Observer-hemisphere maps in the thesis convention (docs/conventions.md).
+"""Observer-hemisphere maps in the thesis convention (docs/reference/conventions.md).
 
 Azimuth on the horizontal axis with straight ahead (180°) at the centre, the main rotor's
 advancing side (90°) on the right half and straight behind (0°/360°) at both edges;

@@ -4,6 +4,6 @@ Layer 3 (beside :mod:`nps.mission`): a rig case replaces the aircraft and its tr
 then run on what :mod:`nps.rig.case` writes.
 """
 
-from nps.rig.case import microphone_table, rotor_test_trim
+from nps.rig.case import RIG_AIRCRAFT, microphone_table, rig_trim
 
-__all__ = ["microphone_table", "rotor_test_trim"]
+__all__ = ["RIG_AIRCRAFT", "microphone_table", "rig_trim"]

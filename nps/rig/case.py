@@ -1,17 +1,17 @@
-"""Isolated-rotor test cases: a rotor in hover or in a wind tunnel, microphones fixed to the hub.
+"""Rigs: an isolated rotor on a test stand or in a wind tunnel, microphones fixed to the hub.
 
-A test (``config/tests/*.yaml``, schema ``nps/app/schemas/rotor_test.schema.yaml``) names one rotor (a
-rotor YAML, i.e. one ``rotors[]`` entry of an aircraft file, or a rotor of an aircraft file), its
-operating condition with the atmosphere given directly, and microphones. No aircraft, mission or
-aircraft trim is involved: the set-up writes the trim artifact (one row) and the observer table,
-and the study stages (loads, wake, acoustics, metrics) run on them unchanged.
+A rig (``config/rigs/*.yaml``, schema ``nps/app/schemas/rig.schema.yaml``) names one rotor (a rotor
+YAML, i.e. one ``rotors[]`` entry of an aircraft file, or a rotor of an aircraft file), its operating
+condition with the atmosphere given directly, microphones, and the settings its jobs run with. No
+aircraft, mission or aircraft trim is involved: the set-up writes the trim artifact (one row) and the
+observer table, and the study stages (loads, wake, acoustics, metrics) run on them unchanged.
 
-Frames (docs/rotor_tests.md has the picture):
+Frames (docs/reference/rigs.md has the picture):
 
 - **Test frame T** (microphones): origin at the hub, x_T downstream along the tunnel axis, z_T up
   (vertical, not along the shaft), y_T = z_T × x_T, which is the advancing side of a rotor turning
   counterclockwise seen from above. Fixed to the hub (the microphones do not move relative to it).
-- **Flight frame G** (the study's ground frame, docs/conventions.md): the rotor flies at
+- **Flight frame G** (the study's ground frame, docs/reference/conventions.md): the rotor flies at
   V = tunnel speed along +x_G through still air. x_G is *upstream*, so G is T turned by 180°
   about z: (x_G, y_G, z_G) = (−x_T, −y_T, z_T). Microphones move with the hub at V.
 - **Shaft angle** α_s, positive with the shaft tilted toward downstream (aft, the usual
@@ -39,10 +39,13 @@ from nps.noise.signals import signal_arrays
 from nps.noise.spectra import harmonic_band_msp, level_db, narrowband_msp
 from nps.rotor.trim import TRIM_COLUMNS, glauert_inflow
 
+# the aircraft name of every rig in the workflow: a rig's jobs are those of aircraft "rigs", segment NAME
+# (results/rigs/NAME/, like results/<aircraft>/<segment>/)
+RIG_AIRCRAFT = "rigs"
 # a rotor YAML may omit the fields that place a rotor on an aircraft
 _ROTOR_DEFAULTS = {"role": "lift", "hub_position_m": [0.0, 0.0, 0.0], "thrust_axis_body": [0.0, 0.0, 1.0]}
 MICROPHONE_COLUMNS = ("x_T_m", "y_T_m", "z_T_m", "group")
-# rotor fields a test condition may set (they replace the rotor file's)
+# rotor fields a rig's condition may set (they replace the rotor file's)
 CONDITION_ROTOR_FIELDS = ("control", "pitch_deg", "flapping", "higher_harmonic_pitch", "elastic_twist_harmonics",
                           "prescribed_flap")
 
@@ -63,7 +66,7 @@ def omega_of(condition: Mapping) -> float:
     return float(condition["omega_rad_s"]) if "omega_rad_s" in condition else float(condition["rpm"]) * math.pi / 30.0
 
 
-def rotor_for_test(rotor: Mapping, condition: Mapping) -> dict:
+def rotor_for_rig(rotor: Mapping, condition: Mapping) -> dict:
     """The rotor configuration the stages use: ``rotor`` with the condition's speed and, where the
     condition gives them, its control, pitch, flapping and prescribed blade motion (higher-harmonic
     pitch, elastic twist and flap harmonics of that condition, e.g. HART-II's MN and MV)."""
@@ -131,8 +134,8 @@ def microphone_positions(specs, base: str | Path = ".") -> tuple[np.ndarray, np.
     return np.concatenate(parts), groups
 
 
-def rotor_test_trim(rotor: Mapping, condition: Mapping, grid: DiskGrid) -> pd.DataFrame:
-    """The trim artifact (one row, :data:`nps.rotor.trim.TRIM_COLUMNS`) of a test: hub at the origin of G,
+def rig_trim(rotor: Mapping, condition: Mapping, grid: DiskGrid) -> pd.DataFrame:
+    """The trim artifact (one row, :data:`nps.rotor.trim.TRIM_COLUMNS`) of a rig: hub at the origin of G,
     moving at the tunnel speed along +x_G, shaft tilted by the shaft angle.
 
     The rotor is solved under its control mode here (:func:`nps.rotor.control.solve_rotor`), so the row

@@ -6,7 +6,7 @@ Mach numbers M, vectorised over broadcast arrays. Sign conventions: α from the 
 (toward the leading edge) to the relative wind, nose up positive; c_l perpendicular to the
 relative wind, c_d along it, c_m nose up positive.
 
-Two implementations (``docs/models/loads.md``, section "Airfoils"):
+Two implementations (``docs/reference/loads.md``, section "Airfoils"):
 
 - :class:`LinearAirfoil` (the default): c_l = a (α − α0)/√(1 − min(M, M_cap)²) clipped to
   ±c_l,max, c_d = cd0 + cd1 α + cd2 α², c_m = 0. It is defined on α ∈ [−π/2, π/2): a section in
@@ -28,6 +28,15 @@ C81 format (fixed columns, the rotorcraft airfoil-deck standard; read and writte
   number in 7-column fields, nine to a line, continuation lines as for the Mach line
   (F7.0, 9F7.0 / 7X, 9F7.0). Tables in the order c_l, c_d, c_m; α strictly increasing.
 
+XFOIL polars: the file XFOIL's ``PACC`` command writes (``.pol``, ``.dat`` or ``.txt``; recognised
+by its ``XFOIL`` banner): header lines with the airfoil name (``Calculated polar for:``), the
+Mach and Reynolds numbers and N_crit, then a column-name line starting with ``alpha``, a line of
+dashes, and one row per converged angle (``alpha CL CD CDp CM`` and transition columns, in any
+order XFOIL writes them; only ``alpha``, ``CL``, ``CD``, ``CM`` are used). Rows come in the order
+XFOIL ran them: they are sorted by α; an angle computed twice must give the same coefficients.
+The polar applies at every Mach number (XFOIL already applied its Kármán–Tsien correction at the
+header's Mach number); several Mach numbers need a C81 deck or a CSV polar with a ``mach`` column.
+
 CSV polars: columns ``alpha_deg``, ``cl``, ``cd`` and optionally ``cm``, ``mach`` and
 ``reynolds``; ``#`` starts a comment line. Rows with several ``mach`` values form a table in
 Mach (each Mach's polar interpolated onto the union of the angles inside the range common to
@@ -39,6 +48,7 @@ every Mach number (no compressibility correction).
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import ClassVar, Protocol
@@ -409,6 +419,101 @@ def read_polar_csv(path: str | Path, *, reynolds: float | None = None) -> Airfoi
 
 
 # ---------------------------------------------------------------------------------------------
+# XFOIL polars
+
+_XFOIL_HEADER = re.compile(r"Mach\s*=\s*([-+0-9.eE]+)\s+Re\s*=\s*([-+0-9.]+)\s*e\s*([-+]?\d+)\s+Ncrit\s*=\s*([-+0-9.]+)")
+XFOIL_SUFFIXES = (".pol", ".dat", ".txt")
+
+
+@dataclass(frozen=True)
+class XfoilPolar:
+    """An XFOIL polar file's contents: the airfoil table and the conditions XFOIL computed it at."""
+
+    table: AirfoilTable
+    mach: float
+    reynolds: float
+    ncrit: float
+
+
+def is_xfoil_polar(path: str | Path) -> bool:
+    """True when the first non-blank line of ``path`` is XFOIL's banner (``XFOIL  Version …``)."""
+    with open(path, errors="replace") as handle:
+        for line in handle:
+            if line.strip():
+                return line.split()[0] == "XFOIL"
+    return False
+
+
+def _xfoil_rows(lines: list[str], path: Path) -> tuple[list[str], int]:
+    """(column names, index of the first data line) of an XFOIL polar."""
+    for k, line in enumerate(lines):
+        words = line.split()
+        if words and words[0] == "alpha":
+            if k + 1 >= len(lines) or not set(lines[k + 1].split()) <= {"-" * len(w) for w in lines[k + 1].split()}:
+                raise AirfoilError(f"{path}: line {k + 2}: expected the line of dashes under the column names")
+            missing = [c for c in ("CL", "CD", "CM") if c not in words]
+            if missing:
+                raise AirfoilError(f"{path}: line {k + 1}: column {missing[0]}: required column missing; found {words}")
+            return words, k + 2
+    raise AirfoilError(f"{path}: expected XFOIL's column-name line starting with 'alpha'; found none")
+
+
+def read_xfoil_polar(path: str | Path) -> XfoilPolar:
+    """Read an XFOIL polar file (format in the module docstring)."""
+    path = Path(path)
+    lines = path.read_text(errors="replace").splitlines()
+    if not is_xfoil_polar(path):
+        raise AirfoilError(f"{path}: expected an XFOIL polar (first line 'XFOIL  Version ...')")
+    name = next((ln.split(":", 1)[1].strip() for ln in lines if "Calculated polar for:" in ln), "") or path.stem
+    header = next((_XFOIL_HEADER.search(ln) for ln in lines if _XFOIL_HEADER.search(ln)), None)
+    if header is None:
+        raise AirfoilError(f"{path}: expected the line 'Mach = ...  Re = ... e ...  Ncrit = ...'; found none")
+    mach, mantissa, exponent, ncrit = (float(g) for g in header.groups())
+    columns, first = _xfoil_rows(lines, path)
+    rows = {}
+    for line_no, line in enumerate(lines[first:], start=first + 1):
+        words = line.split()
+        if not words:
+            continue
+        try:
+            values = dict(zip(columns, (float(w) for w in words), strict=True))
+        except ValueError:
+            raise AirfoilError(f"{path}: line {line_no}: expected {len(columns)} numbers ({' '.join(columns)}), "
+                               f"got {line.strip()!r}") from None
+        coeffs = (values["CL"], values["CD"], values["CM"])
+        if rows.setdefault(values["alpha"], coeffs) != coeffs:
+            raise AirfoilError(f"{path}: line {line_no}: alpha {values['alpha']:g} deg computed twice with different "
+                               "coefficients; keep one")
+    if len(rows) < 2:
+        raise AirfoilError(f"{path}: expected at least two converged angles, found {len(rows)}")
+    alpha_deg = np.array(sorted(rows))
+    coeffs = np.array([rows[a] for a in alpha_deg])
+    tables = [PolarTable(label, np.radians(alpha_deg), np.array([mach]), coeffs[:, [k]], str(path))
+              for k, label in enumerate(("CL", "CD", "CM"))]
+    return XfoilPolar(AirfoilTable(name, *tables, source=str(path)), mach, mantissa * 10.0**exponent, ncrit)
+
+
+def write_xfoil_polar(path: str | Path, polar: XfoilPolar) -> None:
+    """Write ``polar`` in XFOIL's polar format (α to 3 decimals, c_l and c_m to 4, c_d to 5, as XFOIL does)."""
+    table = polar.table
+    if table.cl.mach.size != 1:
+        raise AirfoilError(f"{path}: an XFOIL polar holds one Mach number; the table has {table.cl.mach.size}")
+    if not (np.array_equal(table.cl.alpha_rad, table.cd.alpha_rad) and np.array_equal(table.cl.alpha_rad, table.cm.alpha_rad)):
+        raise AirfoilError(f"{path}: an XFOIL polar needs c_l, c_d and c_m at the same angles")
+    exponent = int(math.floor(math.log10(polar.reynolds))) if polar.reynolds > 0 else 0
+    lines = ["", "       XFOIL         Version 6.99", "", f" Calculated polar for: {table.name}", "",
+             " 1 1 Reynolds number fixed          Mach number fixed", "",
+             f" Mach = {polar.mach:7.3f}     Re = {polar.reynolds / 10.0**exponent:9.3f} e {exponent}     "
+             f"Ncrit = {polar.ncrit:7.3f}", "",
+             "   alpha    CL        CD       CDp       CM",
+             "  ------ -------- --------- --------- --------"]
+    for alpha, cl, cd, cm in zip(np.degrees(table.cl.alpha_rad), table.cl.values[:, 0], table.cd.values[:, 0],
+                                 table.cm.values[:, 0]):
+        lines.append(f"  {alpha:6.3f} {cl:8.4f} {cd:9.5f} {0.0:9.5f} {cm:8.4f}")
+    Path(path).write_text("\n".join(lines) + "\n")
+
+
+# ---------------------------------------------------------------------------------------------
 # ±180° extension
 
 
@@ -484,7 +589,8 @@ def viterna_extension(table: AirfoilTable, *, aspect_ratio: float = 10.0) -> Air
 
 def read_airfoil(path: str | Path, *, extrapolation: str = "none", aspect_ratio: float = 10.0,
                  reynolds: float | None = None) -> AirfoilTable:
-    """An airfoil table from a C81 deck (``.c81``) or a CSV polar (``.csv``), optionally extended.
+    """An airfoil table from a C81 deck (``.c81``), a CSV polar (``.csv``) or an XFOIL polar
+    (``.pol``, ``.dat``, ``.txt`` with XFOIL's banner), optionally extended.
 
     ``extrapolation``: ``none`` (angles outside the table are an error) or ``viterna``
     (:func:`viterna_extension` with the blade ``aspect_ratio``).
@@ -497,8 +603,14 @@ def read_airfoil(path: str | Path, *, extrapolation: str = "none", aspect_ratio:
         table = read_c81(path)
     elif suffix == ".csv":
         table = read_polar_csv(path, reynolds=reynolds)
+    elif suffix in XFOIL_SUFFIXES and path.is_file() and is_xfoil_polar(path):
+        polar = read_xfoil_polar(path)
+        if reynolds is not None and not math.isclose(reynolds, polar.reynolds, rel_tol=1e-3):
+            raise AirfoilError(f"{path}: reynolds: the XFOIL polar is at Re = {polar.reynolds:.4g}, not {reynolds:.4g}")
+        table = polar.table
     else:
-        raise AirfoilError(f"{path}: table: expected a .c81 or .csv file, got suffix {path.suffix!r}")
+        raise AirfoilError(f"{path}: table: expected a .c81 deck, a .csv polar or an XFOIL polar "
+                           f"({', '.join(XFOIL_SUFFIXES)} starting with XFOIL's banner), got {path.name!r}")
     if extrapolation == "viterna":
         return viterna_extension(table, aspect_ratio=aspect_ratio)
     if extrapolation != "none":

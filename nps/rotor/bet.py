@@ -1,7 +1,7 @@
 """Rotor blade loads: blade element theory, linear inflow, rigid flapping and the three-step trim.
 
-Thesis chapter 4 (eq. 4.1–4.13, Fig. 4.3), errata and choices in ``docs/models/loads.md``.
-Frames and signs: ``docs/conventions.md``. All quantities SI; angles in rad.
+Thesis chapter 4 (eq. 4.1–4.13, Fig. 4.3), errata and choices in ``docs/reference/loads.md``.
+Frames and signs: ``docs/reference/conventions.md``. All quantities SI; angles in rad.
 
 Rotor aerodynamic frame
     Every rotor is treated as counterclockwise (seen from +z_H); a clockwise rotor (s = −1)
@@ -74,6 +74,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from nps.core.solvers import ConvergenceError, forward_difference_jacobian, limited_secant, newton_fd
 from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 DISK_COLUMNS = (
@@ -81,10 +82,22 @@ DISK_COLUMNS = (
     "ut_mps", "up_mps", "inflow_ratio", "alpha_eff_rad", "mach", "fz_N_per_m", "fx_N_per_m",
     "circulation_m2_s",
 )
+# inflow and flapping at given controls (nps.core.solvers.newton_fd, chord method): converged when every residual
+# is below _INNER_TOL (λ0 residual dimensionless, flap harmonic balance in rad); at most _MAX_INNER Newton updates;
+# difference steps _INNER_FD_STEP · max(1, 10 |x_j|); the Jacobian is kept while each residual is at most
+# _JACOBIAN_REFRESH times the previous one
 _INNER_TOL = 1e-10
 _MAX_INNER = 30
-_MAX_CONTROL_RAD = 0.7
+_INNER_FD_STEP = 1e-7
+_JACOBIAN_REFRESH = 0.2
+# control steps (nps.core.solvers.limited_secant): each to _SECANT_TOL_FRACTION of its tolerance, control moves
+# within ±_MAX_CONTROL_STEP_RAD per step and ±MAX_CONTROL_RAD overall, probes of _PROBE_RAD, a new slope kept
+# when above _SLOPE_KEEP_RATIO of the old one
+MAX_CONTROL_RAD = 0.7
 _MAX_CONTROL_STEP_RAD = 0.1
+_SECANT_TOL_FRACTION = 0.25
+_PROBE_RAD = 0.01
+_SLOPE_KEEP_RATIO = 0.05
 
 
 class TrimError(RuntimeError):
@@ -111,7 +124,7 @@ class DiskGrid:
 
 @dataclass(frozen=True)
 class SectionForces:
-    """Sectional loads per unit span, blade frame (docs/conventions.md), broadcast shape.
+    """Sectional loads per unit span, blade frame (docs/reference/conventions.md), broadcast shape.
 
     ``fz_N_per_m`` along +z_H (thrust +), ``fx_N_per_m`` in plane opposing the blade's motion,
     ``alpha_eff_rad`` the aerodynamic angle of attack (mod π, see :func:`section_forces`),
@@ -459,42 +472,36 @@ class _StateSolver:
             n = beta.size
             self.x[1:] = beta.mean(), 2.0 / n * float(beta @ disk.cos[:, 0]), 2.0 / n * float(beta @ disk.sin[:, 0])
 
-    def _jacobian(self, c: Controls, x: np.ndarray, res: np.ndarray) -> np.ndarray:
-        jac = np.empty((self.active.size, self.active.size))
-        for j in self.active:
-            h = 1e-7 * max(1.0, abs(x[j]) * 10.0)
-            xp = x.copy()
-            xp[j] += h
-            jac[:, j] = (self.disk.residual(c, xp)[0][self.active] - res) / h
-        return jac
+    def _residual(self, c: Controls, x: np.ndarray) -> tuple[np.ndarray, dict]:
+        res, fields = self.disk.residual(c, x)
+        return res[self.active], fields
+
+    def _steps(self, x: np.ndarray) -> list[float]:
+        return [_INNER_FD_STEP * max(1.0, abs(x[j]) * 10.0) for j in self.active]
+
+    @staticmethod
+    def _limit_inflow(x: np.ndarray, dx: np.ndarray) -> np.ndarray:
+        """Keep the mean inflow on its branch: λ0 may shrink to half or grow threefold per step."""
+        if x[0] != 0.0:
+            ratio = (x[0] + dx[0]) / x[0]
+            if ratio < 0.5 or ratio > 3.0:
+                dx *= (min(max(ratio, 0.5), 3.0) - 1.0) / (ratio - 1.0)
+        return dx
 
     def solve(self, c: Controls) -> tuple[dict, int]:
-        x = self.x.copy()
-        previous = np.inf
-        for iteration in range(1, _MAX_INNER + 1):
-            res, fields = self.disk.residual(c, x)
-            res = res[self.active]
-            norm = float(np.max(np.abs(res)))
-            if not math.isfinite(norm):
-                break
-            if norm < _INNER_TOL:
-                self.x = x
-                return fields, iteration
-            if self.jac is None or norm > 0.2 * previous:
-                self.jac = self._jacobian(c, x, res)
-            previous = norm
-            dx = np.zeros(4)
-            dx[self.active] = np.linalg.solve(self.jac, -res)
-            # keep the mean inflow on its branch: λ0 may shrink to half or grow threefold per step
-            if x[0] != 0.0:
-                ratio = (x[0] + dx[0]) / x[0]
-                if ratio < 0.5 or ratio > 3.0:
-                    dx *= (min(max(ratio, 0.5), 3.0) - 1.0) / (ratio - 1.0)
-            x = x + dx
-        raise TrimError(
-            f"rotor '{self.disk.g.name}': inflow/flapping solution did not converge for controls {c} "
-            f"(state {x}, {_case(self.disk)})"
-        )
+        """Disk fields at the converged state (kept as the next start) and the residual evaluations it took."""
+        try:
+            solution = newton_fd(lambda x: self._residual(c, x), self.x, steps=self._steps, tol=_INNER_TOL,
+                                 max_iter=_MAX_INNER, what="inflow/flapping", columns=self.active,
+                                 jacobian=self.jac, refresh_ratio=_JACOBIAN_REFRESH, limit_step=self._limit_inflow)
+        except ConvergenceError as failure:
+            self.jac = failure.jacobian
+            raise TrimError(
+                f"rotor '{self.disk.g.name}': inflow/flapping solution did not converge for controls {c} "
+                f"(state {failure.x}, {_case(self.disk)})"
+            ) from failure
+        self.x, self.jac = solution.x, solution.jacobian
+        return solution.payload, solution.iterations + 1
 
 
 def _case(disk: _Disk) -> str:
@@ -614,11 +621,8 @@ def _controls(v: np.ndarray) -> Controls:
 def _control_steps(it: _TrimIteration) -> tuple:
     """The three trim steps (direction in (θ0, θ1c, θ1s), output index, name, initial slope): θ0 → T, then the
     swashplate-phased cyclic directions that change one hub moment each (first order) → M_y and → M_x."""
-    sens = np.empty((2, 2))
-    for j in (1, 2):
-        probe = it.ctrl.copy()
-        probe[j] += 0.01
-        sens[:, j - 1] = (it.evaluate(probe)[2][1:] - it.res[1:]) / 0.01
+    sens = forward_difference_jacobian(lambda v: it.evaluate(v)[2][1:], it.ctrl, it.res[1:], (_PROBE_RAD, _PROBE_RAD),
+                                       columns=(1, 2))
     mix = np.linalg.inv(sens)
     return (
         (np.array([1.0, 0.0, 0.0]), 0, "theta0", None),
@@ -629,30 +633,31 @@ def _control_steps(it: _TrimIteration) -> tuple:
 
 def _secant_step(it: _TrimIteration, direction, oi: int, name: str, slope0, slopes: dict, tol: np.ndarray,
                  outer: int, step: int, max_secant: int) -> None:
-    """Secant iteration of output ``oi`` along ``direction`` to a quarter of its tolerance (steps limited to
-    _MAX_CONTROL_STEP_RAD, controls to ±_MAX_CONTROL_RAD); the slope of each output is kept between outer
-    iterations and only updated when the new estimate is consistent."""
-    max_u = _MAX_CONTROL_STEP_RAD / np.abs(direction).max()
-    if abs(it.res[oi]) > 0.25 * tol[oi] and oi not in slopes:
+    """Secant iteration of output ``oi`` along ``direction`` to _SECANT_TOL_FRACTION of its tolerance
+    (:func:`nps.core.solvers.limited_secant`; steps limited to _MAX_CONTROL_STEP_RAD, controls to
+    ±MAX_CONTROL_RAD); the slope of each output is kept between outer iterations and only updated when
+    the new estimate is consistent. The first slope of θ0 is probed with a _PROBE_RAD step."""
+    goal = _SECANT_TOL_FRACTION * tol[oi]
+    if abs(it.res[oi]) > goal and oi not in slopes:
         if slope0 is None:
-            probe = it.ctrl + 0.01 * direction
+            probe = it.ctrl + _PROBE_RAD * direction
             evaluated = it.evaluate(probe)
-            slope0 = (evaluated[2][oi] - it.res[oi]) / 0.01
+            slope0 = (evaluated[2][oi] - it.res[oi]) / _PROBE_RAD
             it.accept(probe, evaluated, outer, step, name)
         slopes[oi] = slope0
-    for _ in range(max_secant):
-        if abs(it.res[oi]) <= 0.25 * tol[oi]:
-            break
-        slope = slopes[oi]
-        du = float(np.clip(-it.res[oi] / slope, -max_u, max_u))
-        trial = np.clip(it.ctrl + du * direction, -_MAX_CONTROL_RAD, _MAX_CONTROL_RAD)
+    if oi not in slopes:
+        return
+
+    def move(du: float):
+        trial = np.clip(it.ctrl + du * direction, -MAX_CONTROL_RAD, MAX_CONTROL_RAD)
         if np.array_equal(trial, it.ctrl):
-            break
+            return None
         evaluated = it.evaluate(trial)
-        new_slope = (evaluated[2][oi] - it.res[oi]) / du
-        if math.isfinite(new_slope) and new_slope * slope > 0.0 and abs(new_slope) > 0.05 * abs(slope):
-            slopes[oi] = new_slope
         it.accept(trial, evaluated, outer, step, name)
+        return evaluated[2][oi]
+
+    slopes[oi] = limited_secant(move, it.res[oi], slopes[oi], tol=goal, max_iter=max_secant,
+                                max_step=_MAX_CONTROL_STEP_RAD / np.abs(direction).max(), keep_ratio=_SLOPE_KEEP_RATIO)
 
 
 def trim_rotor(

@@ -26,11 +26,12 @@ from typing import Callable, Mapping
 import numpy as np
 import pandas as pd
 
+from nps.core.solvers import ConvergenceError, secant
 from nps.rotor.bet import Controls, DiskGrid, RotorTrim, TrimError, rotor_loads, trim_rotor
 from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 MODES = ("collective", "rpm", "fixed")
-_MAX_ITERATIONS = 30
+_MAX_ITERATIONS = 30  # load evaluations of a one-control secant trim (nps.core.solvers.secant)
 _THETA_START_RAD = 0.1
 
 
@@ -82,20 +83,15 @@ def at_rotor_speed(op: OperatingPoint, omega_rad_s: float) -> OperatingPoint:
 
 def _secant(evaluate: Callable[[float], RotorTrim], u0: float, first: RotorTrim, u1: float, target: float,
             tol: float, what: str, name: str) -> tuple[float, RotorTrim]:
-    """Control u with |thrust − target| ≤ tol by the secant method from (u0, ``first``) and u1."""
-    t0 = first.totals.thrust_N
-    for _ in range(_MAX_ITERATIONS):
-        result = evaluate(u1)
-        t1 = result.totals.thrust_N
-        if abs(t1 - target) <= tol:
-            return u1, result
-        if t1 == t0:
-            break
-        u0, u1, t0 = u1, u1 - (t1 - target) * (u1 - u0) / (t1 - t0), t1
-        if not math.isfinite(u1):
-            break
-    raise TrimError(f"rotor '{name}': {what} trim did not reach the thrust target {target:.6g} N within {tol:.3g} N "
-                    f"in {_MAX_ITERATIONS} iterations (last {what} {u1:.6g}, thrust {t1:.6g} N)")
+    """Control u with |thrust − target| ≤ tol (N) by the secant method from (u0, ``first``) and u1."""
+    try:
+        root = secant(evaluate, u0, first, u1, target=target, tol=tol, max_iter=_MAX_ITERATIONS, what=f"{what} trim",
+                      value=lambda result: result.totals.thrust_N)
+    except ConvergenceError as failure:
+        raise TrimError(f"rotor '{name}': {what} trim did not reach the thrust target {target:.6g} N within {tol:.3g} "
+                        f"N in {_MAX_ITERATIONS} iterations (last {what} {failure.x:.6g}, thrust {failure.value:.6g} N)"
+                        ) from failure
+    return root.x, root.payload
 
 
 def solve_rotor(geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, control: RotorControl, *,
@@ -174,7 +170,7 @@ def loads_at_trim(geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, c
     """The loads stage's solution at one trim-table operating point ``op``.
 
     ``collective`` and ``fixed``: :func:`solve_rotor`. ``rpm``: the table's Ω is already the
-    solved speed (:func:`trim_rotor_speeds`, or the rotor-test set-up), so the loads are taken
+    solved speed (:func:`trim_rotor_speeds`, or the rig set-up), so the loads are taken
     at it with the fixed pitch — every later stage reads the same Ω from the table — and must
     meet the table's thrust to ``tol_rel``; a table not trimmed for rpm control fails here.
     """

@@ -2,7 +2,7 @@
 
 Geometry comes from an aircraft configuration file (``config/aircraft/*.yaml``, validated
 by ``nps/app/schemas/aircraft.schema.yaml``); the operating point comes from the aircraft
-trim artifact (``trim.parquet``, one row per rotor). Frames and signs: docs/conventions.md.
+trim artifact (``trim.parquet``, one row per rotor). Frames and signs: docs/reference/conventions.md.
 """
 
 from __future__ import annotations
@@ -204,7 +204,7 @@ def airfoil_from_config(foil: Mapping, aspect_ratio: float) -> Airfoil:
 class OperatingPoint:
     """Steady operating state of one rotor from the aircraft trim (one ``trim.parquet`` row).
 
-    Advance ratios in the hub frame (docs/conventions.md): μ_x, μ_y in plane, μ_z positive
+    Advance ratios in the hub frame (docs/reference/conventions.md): μ_x, μ_y in plane, μ_z positive
     when the free stream goes down through the disk. Targets: thrust along +z_H and hub
     moments about x_H (roll) and y_H (pitch).
     """

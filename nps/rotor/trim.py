@@ -1,6 +1,6 @@
 """Aircraft trim: steady-flight force and moment balance (the role NDARC had in the thesis).
 
-Frames and signs: docs/conventions.md. For an aircraft flying with constant velocity
+Frames and signs: docs/reference/conventions.md. For an aircraft flying with constant velocity
 V_G = (V_h, 0, V_c) the unknowns are the body pitch θ, the body roll φ and the thrust T_i of
 every rotor; each rotor's thrust acts along its shaft axis a_i (tip-path plane perpendicular
 to the shaft, i.e. zero hub-moment targets). The balance, in the ground frame G:
@@ -38,14 +38,26 @@ import pandas as pd
 
 from nps.core import frames
 from nps.core.atmosphere import AtmosphereState
+from nps.core.solvers import ConvergenceError, newton, newton_fd
 from nps.rotor.geometry import RotorGeometry
 
 G0_M_S2 = 9.80665
 INDUCED_POWER_FACTOR = 1.15
-TRIM_TOLERANCE = 1e-12  # residual, as a fraction of the weight (forces) or weight x radius (moments)
+# aircraft balance (nps.core.solvers.newton_fd): converged when every residual is below TRIM_TOLERANCE, the
+# residuals being forces / W and moments / (W R_max) (dimensionless); at most TRIM_MAX_ITERATIONS Newton updates;
+# forward-difference steps TRIM_FD_STEP rad (pitch, roll) and TRIM_FD_STEP W (thrusts); the minimum-norm step
+# (more rotors than balance equations) drops singular values below TRIM_PINV_RCOND σ_max
+TRIM_TOLERANCE = 1e-12
+TRIM_MAX_ITERATIONS = 50
+TRIM_FD_STEP = 1e-7
+TRIM_PINV_RCOND = 1e-12
+# Glauert inflow (nps.core.solvers.newton): converged when the Newton step |Δλ_i| < GLAUERT_TOLERANCE (λ_i is
+# dimensionless, a fraction of ΩR); each step may halve λ_i at most
+GLAUERT_TOLERANCE = 1e-14
+GLAUERT_MAX_ITERATIONS = 100
 
 
-# The trim artifact (``trim.parquet``): one row per rotor, these columns (docs/conventions.md).
+# The trim artifact (``trim.parquet``): one row per rotor, these columns (docs/reference/conventions.md).
 TRIM_COLUMNS = (
     "rotor", "role", "rotation_sign", "n_blades", "radius_m", "omega_rad_s", "thrust_N", "roll_moment_Nm",
     "pitch_moment_Nm", "torque_Nm", "power_W", "mu_x", "mu_y", "mu_z", "lambda_i", "ct", "tip_mach",
@@ -54,8 +66,8 @@ TRIM_COLUMNS = (
     "density_kg_m3", "speed_of_sound_mps", "pitch_rad", "roll_rad", "flight_path_rad", "trim_iterations",
 )
 
-# stages whose artifact is a trim table: the aircraft trim and the set-up of a rotor test (nps.rig.case)
-TRIM_STAGES = ("trim", "rotor_test")
+# stages whose artifact is a trim table: the aircraft trim and the set-up of a rig (nps.rig.case)
+TRIM_STAGES = ("trim", "rig")
 
 
 def trim_row(trim: pd.DataFrame, rotor: str, what: str = "trim.parquet") -> dict:
@@ -99,17 +111,18 @@ def glauert_inflow(ct: float, mu: float, mu_z: float) -> float:
     """
     if ct <= 0.0:
         return 0.0
-    lam_i = max(np.sqrt(ct / 2.0), ct / (2.0 * max(mu, 1e-6)))
-    for _ in range(100):
+
+    def value_and_slope(lam_i):
         lam = mu_z + lam_i
         root = np.sqrt(mu * mu + lam * lam)
-        residual = lam_i - ct / (2.0 * root)
-        derivative = 1.0 + ct * lam / (2.0 * root**3)
-        step = residual / derivative
-        lam_i = max(lam_i - step, 0.5 * lam_i)
-        if abs(step) < 1e-14:
-            return float(lam_i)
-    raise AircraftTrimError(f"Glauert inflow did not converge (C_T={ct:.4g}, mu={mu:.4g}, mu_z={mu_z:.4g})")
+        return lam_i - ct / (2.0 * root), 1.0 + ct * lam / (2.0 * root**3)
+
+    start = max(np.sqrt(ct / 2.0), ct / (2.0 * max(mu, 1e-6)))
+    try:
+        return float(newton(value_and_slope, start, tol=GLAUERT_TOLERANCE, max_iter=GLAUERT_MAX_ITERATIONS,
+                            what="Glauert inflow", min_ratio=0.5))
+    except ConvergenceError as failure:
+        raise AircraftTrimError(f"Glauert inflow did not converge (C_T={ct:.4g}, mu={mu:.4g}, mu_z={mu_z:.4g})") from failure
 
 
 def _layout_moments(aircraft: dict) -> list[int]:
@@ -189,22 +202,21 @@ def _residual(x, states, moments, aircraft, flight, weight_n, length_m) -> np.nd
     return np.concatenate([force / weight_n, moment_b[moments] / (weight_n * length_m)])
 
 
-def trim_aircraft(aircraft: dict, flight: FlightCondition, omega_scale: dict[str, float] | None = None,
-                  rotor_speeds: dict[str, float] | None = None) -> pd.DataFrame:
-    """Trim one aircraft in steady flight; one row per rotor (columns: docs/conventions.md).
-
-    ``aircraft`` is a validated aircraft configuration; ``omega_scale`` optional per-rotor
-    speed factors; ``rotor_speeds`` optional rotor speeds (rad/s) that replace the scaled
-    configured ones (the rpm-control re-trim, :func:`nps.rotor.control.trim_rotor_speeds`). Raises
-    :class:`AircraftTrimError` if the balance does not converge.
-    """
-    omega_scale, rotor_speeds = omega_scale or {}, rotor_speeds or {}
+def _rotor_states(aircraft: dict, omega_scale: dict[str, float], rotor_speeds: dict[str, float]) -> list[_RotorState]:
+    """Every rotor's speed (``rotor_speeds``, else the configured speed × ``omega_scale``), unit thrust axis
+    a_i (body frame) and hub rotation R_BH."""
     states = []
     for rotor in aircraft["rotors"]:
         axis_b = np.asarray(rotor["thrust_axis_body"], dtype=float)
         axis_b = axis_b / np.linalg.norm(axis_b)
         omega = rotor_speeds.get(rotor["name"], rotor["omega_rad_s"] * omega_scale.get(rotor["name"], 1.0))
         states.append(_RotorState(rotor, omega, axis_b, frames.hub_to_body(axis_b), RotorGeometry.from_config(rotor)))
+    return states
+
+
+def _balance(aircraft: dict, flight: FlightCondition, states: list[_RotorState]) -> tuple[np.ndarray, int]:
+    """(θ, φ, T_1 … T_n) of the balance and the Newton updates it took, from level attitude with the weight
+    shared equally by the lift rotors (2 % of it on each other rotor)."""
     weight = aircraft["gross_weight_kg"] * G0_M_S2
     length = max(s.radius_m for s in states)
     moments = _layout_moments(aircraft)
@@ -212,25 +224,22 @@ def trim_aircraft(aircraft: dict, flight: FlightCondition, omega_scale: dict[str
     x = np.concatenate([[0.0, 0.0], [weight / n_lift if s.rotor["role"] == "lift" else 0.02 * weight for s in states]])
     scale = np.concatenate([[1.0, 1.0], np.full(len(states), weight)])
     args = (states, moments, aircraft, flight, weight, length)
-    for iteration in range(50):
-        residual = _residual(x, *args)
-        if np.max(np.abs(residual)) < TRIM_TOLERANCE:
-            break
-        jacobian = np.empty((residual.size, x.size))
-        for j in range(x.size):
-            step = 1e-7 * scale[j]
-            shifted = x.copy()
-            shifted[j] += step
-            jacobian[:, j] = (_residual(shifted, *args) - residual) / step
-        x = x - np.linalg.pinv(jacobian, rcond=1e-12) @ residual
-    else:
+    try:
+        solution = newton_fd(lambda v: (_residual(v, *args), None), x, steps=TRIM_FD_STEP * scale, tol=TRIM_TOLERANCE,
+                             max_iter=TRIM_MAX_ITERATIONS, what="aircraft balance", rcond=TRIM_PINV_RCOND)
+    except ConvergenceError as failure:
         raise AircraftTrimError(
             f"aircraft '{aircraft['name']}' did not trim at V_h={flight.forward_speed_mps} m/s, "
-            f"V_c={flight.climb_speed_mps} m/s: residuals {residual} (forces/W, moments/(W R)); inputs to check: "
+            f"V_c={flight.climb_speed_mps} m/s: residuals {failure.value} (forces/W, moments/(W R)); inputs to check: "
             f"gross_weight_kg, fuselage_drag_area_m2, the rotors' hub_position_m and thrust_axis_body (force and "
             f"moment balance), and the segment's speeds"
-        )
-    negative = [(s.rotor, float(t)) for s, t in zip(states, x[2:]) if t <= 0.0]
+        ) from failure
+    return solution.x, solution.iterations
+
+
+def _check_thrusts(aircraft: dict, states: list[_RotorState], thrusts: np.ndarray) -> None:
+    """Raise :class:`AircraftTrimError` naming the first rotor whose balancing thrust is not positive."""
+    negative = [(s.rotor, float(t)) for s, t in zip(states, thrusts) if t <= 0.0]
     if negative:
         rotor, thrust = negative[0]
         balance = ("the lift rotors' torque: check its thrust_axis_body against the lift rotors' rotation (or a descent "
@@ -240,50 +249,68 @@ def trim_aircraft(aircraft: dict, flight: FlightCondition, omega_scale: dict[str
         raise AircraftTrimError(
             f"aircraft '{aircraft['name']}': rotor '{rotor['name']}' ({rotor['role']}) would need a thrust of {thrust:.4g} N "
             f"along its thrust_axis_body {rotor['thrust_axis_body']} to balance {balance}")
-    pitch, roll = float(x[0]), float(x[1])
+
+
+def _trim_table_row(state: _RotorState, thrust: float, pitch: float, roll: float, flight: FlightCondition,
+                    iterations: int) -> dict:
+    """One rotor's row of the trim table (TRIM_COLUMNS) at the balanced attitude and thrust."""
     r_gb = frames.body_to_ground(pitch, roll)
-    rows = []
-    for state, thrust in zip(states, x[2:]):
-        aero = _rotor_aero(state, float(thrust), r_gb, flight)
-        hub = r_gb @ np.asarray(state.rotor["hub_position_m"], dtype=float)
-        row = {
-            "rotor": state.rotor["name"],
-            "role": state.rotor["role"],
-            "rotation_sign": np.int8(state.sign),
-            "n_blades": np.int32(state.rotor["n_blades"]),
-            "radius_m": state.radius_m,
-            "omega_rad_s": state.omega_rad_s,
-            "thrust_N": float(thrust),
-            "roll_moment_Nm": 0.0,
-            "pitch_moment_Nm": 0.0,
-            "torque_Nm": aero["torque_Nm"],
-            "power_W": aero["power_W"],
-            "mu_x": aero["mu_x"],
-            "mu_y": aero["mu_y"],
-            "mu_z": aero["mu_z"],
-            "lambda_i": aero["lambda_i"],
-            "ct": aero["ct"],
-            "tip_mach": state.omega_rad_s * state.radius_m / flight.atmosphere.speed_of_sound_mps,
-            "hub_x_m": hub[0],
-            "hub_y_m": hub[1],
-            "hub_z_m": hub[2],
-            "vel_x_mps": flight.velocity_g[0],
-            "vel_y_mps": flight.velocity_g[1],
-            "vel_z_mps": flight.velocity_g[2],
-        }
-        for i in range(3):
-            for j in range(3):
-                row[f"r_gh_{i}{j}"] = aero["r_gh"][i, j]
-        row.update(
-            density_kg_m3=flight.atmosphere.density_kg_m3,
-            speed_of_sound_mps=flight.atmosphere.speed_of_sound_mps,
-            pitch_rad=pitch,
-            roll_rad=roll,
-            flight_path_rad=flight.flight_path_rad,
-            trim_iterations=np.int32(iteration),
-        )
-        rows.append(row)
-    return pd.DataFrame(rows)
+    aero = _rotor_aero(state, thrust, r_gb, flight)
+    hub = r_gb @ np.asarray(state.rotor["hub_position_m"], dtype=float)
+    row = {
+        "rotor": state.rotor["name"],
+        "role": state.rotor["role"],
+        "rotation_sign": np.int8(state.sign),
+        "n_blades": np.int32(state.rotor["n_blades"]),
+        "radius_m": state.radius_m,
+        "omega_rad_s": state.omega_rad_s,
+        "thrust_N": thrust,
+        "roll_moment_Nm": 0.0,
+        "pitch_moment_Nm": 0.0,
+        "torque_Nm": aero["torque_Nm"],
+        "power_W": aero["power_W"],
+        "mu_x": aero["mu_x"],
+        "mu_y": aero["mu_y"],
+        "mu_z": aero["mu_z"],
+        "lambda_i": aero["lambda_i"],
+        "ct": aero["ct"],
+        "tip_mach": state.omega_rad_s * state.radius_m / flight.atmosphere.speed_of_sound_mps,
+        "hub_x_m": hub[0],
+        "hub_y_m": hub[1],
+        "hub_z_m": hub[2],
+        "vel_x_mps": flight.velocity_g[0],
+        "vel_y_mps": flight.velocity_g[1],
+        "vel_z_mps": flight.velocity_g[2],
+    }
+    for i in range(3):
+        for j in range(3):
+            row[f"r_gh_{i}{j}"] = aero["r_gh"][i, j]
+    row.update(
+        density_kg_m3=flight.atmosphere.density_kg_m3,
+        speed_of_sound_mps=flight.atmosphere.speed_of_sound_mps,
+        pitch_rad=pitch,
+        roll_rad=roll,
+        flight_path_rad=flight.flight_path_rad,
+        trim_iterations=np.int32(iterations),
+    )
+    return row
+
+
+def trim_aircraft(aircraft: dict, flight: FlightCondition, omega_scale: dict[str, float] | None = None,
+                  rotor_speeds: dict[str, float] | None = None) -> pd.DataFrame:
+    """Trim one aircraft in steady flight; one row per rotor (columns: docs/reference/conventions.md).
+
+    ``aircraft`` is a validated aircraft configuration; ``omega_scale`` optional per-rotor
+    speed factors; ``rotor_speeds`` optional rotor speeds (rad/s) that replace the scaled
+    configured ones (the rpm-control re-trim, :func:`nps.rotor.control.trim_rotor_speeds`). Raises
+    :class:`AircraftTrimError` if the balance does not converge (tolerances: TRIM_* constants).
+    """
+    states = _rotor_states(aircraft, omega_scale or {}, rotor_speeds or {})
+    x, iterations = _balance(aircraft, flight, states)
+    _check_thrusts(aircraft, states, x[2:])
+    pitch, roll = float(x[0]), float(x[1])
+    return pd.DataFrame([_trim_table_row(state, float(thrust), pitch, roll, flight, iterations)
+                         for state, thrust in zip(states, x[2:])])
 
 
 def disk_flow_angle_deg(trim_row) -> float:

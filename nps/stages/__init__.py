@@ -20,11 +20,11 @@ import importlib
 from typing import Callable
 
 # the stages, in workflow order (``radiate``, for tabulated sources, is not in the study workflow;
-# ``rotor_test`` and ``carpet`` belong to the rotor-test workflow, workflow/rules/tests.smk);
+# ``rig``, the set-up of a rig, and ``carpet`` are the rig-only stages, workflow/rules/rig.smk);
 # stage X is ``nps.stages.X.run``
 STAGES = ("trim", "loads", "wake", "observers", "acoustics", "hsi", "metrics", "tones",
           "rotor_figures", "hsi_figure", "study_maps", "rotor_maps", "bvi_hotspot", "summary",
-          "source_hemisphere", "footprint", "certification", "radiate", "rotor_test", "carpet")
+          "source_hemisphere", "footprint", "certification", "radiate", "rig", "carpet")
 
 
 def stage_module(stage: str) -> str:

@@ -2,7 +2,7 @@
 
 inputs: ``disks`` (directory of ``{rotor}.parquet`` disk tables: the loads stage's directory for
 variant ``base``, the wake stage's ``bvi`` directory for variant ``bvi``), ``trim``, ``observers``.
-outputs: ``signals``, a directory of ``{rotor}.parquet`` signal tables (docs/conventions.md:
+outputs: ``signals``, a directory of ``{rotor}.parquet`` signal tables (docs/reference/conventions.md:
 ``observer``, ``group`` (``loading``, ``thickness``), ``time_s``, ``p_Pa``) on the aircraft's common
 grid: one revolution of the reference (first) rotor with ``samples_per_rev`` samples from t = 0.
 params: ``rotors`` (names, the first is the reference), ``hinge_offsets_m`` (rotor → hinge offset),

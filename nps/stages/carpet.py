@@ -1,6 +1,6 @@
-"""Stage ``carpet``: level carpet of a rotor test's plane microphone group (NPS prediction only).
+"""Stage ``carpet``: level carpet of a rig's plane microphone group (NPS prediction only).
 
-inputs: ``metrics`` (metrics table of the test's microphones), ``observers`` (with ``x_T_m``,
+inputs: ``metrics`` (metrics table of the rig's microphones), ``observers`` (with ``x_T_m``,
 ``y_T_m``, ``group``). outputs: ``figure`` (PNG). params: ``groups`` (indices of the plane groups
 drawn, one panel each), ``level`` (metrics column, e.g. ``bvispl_db``), ``label`` (colour-bar text),
 ``title``.

@@ -14,7 +14,8 @@ SEL, L_Amax, truncated), ``histories`` (procedure × microphone × record: time_
 ``pnlt_figure``, ``table_figure``.
 params: ``mission`` (validated mission: V_y, climb angle and V_H come from its segments),
 ``max_mass_kg``, ``segments`` (procedure → mission segment), ``vne_mps``, ``approach_min_speed_mps``
-(optional, null), ``ground``, ``absorption`` (bool), ``aircraft``.
+(null when not given), ``ground`` (as in nps.stages.footprint), ``ground_as_written`` (recorded in the
+metadata), ``absorption`` (bool), ``aircraft``.
 """
 
 from __future__ import annotations
@@ -31,8 +32,8 @@ from nps.mission.trajectory import PROCEDURES, certification_procedure, referenc
 def run(inputs: dict, outputs: dict, params: dict) -> str:
     aircraft = params["aircraft"]
     segments = dict(params["segments"])
-    reference = reference_parameters(params["mission"], aircraft, segments, params.get("vne_mps"),
-                                     params.get("approach_min_speed_mps"))
+    reference = reference_parameters(params["mission"], aircraft, segments, params["vne_mps"],
+                                     params["approach_min_speed_mps"])
     ground = ground_model(params["ground"])
     results = []
     for name in PROCEDURES:
@@ -43,7 +44,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     summary = summary_table(aircraft, float(params["max_mass_kg"]), results)
     summary["segment"] = [segments[r.name] for r in results]
     mics = pd.concat([r.microphones.assign(procedure=r.name) for r in results], ignore_index=True)
-    meta = {"aircraft": aircraft, "segments": segments, "reference": reference, "ground": dict(params["ground"]),
+    meta = {"aircraft": aircraft, "segments": segments, "reference": reference, "ground": dict(params["ground_as_written"]),
             "limits": "ICAO Annex 16 Vol. I Chapter 8 (8.4.2) / 14 CFR 36 Appendix H Stage 3",
             "inputs": sorted(str(v) for v in inputs.values())}
     write_table(summary, outputs["summary"], stage="certification", metadata=meta)

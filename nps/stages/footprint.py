@@ -12,7 +12,8 @@ record: time_s, la_db, pnlt_db, leg), ``areas`` (Parquet) and ``areas_csv`` (met
 area_km2, open), ``sel_figure`` and ``lamax_figure`` (contours with track and altitude profile).
 params: ``mission`` (validated mission with its ``profile``), ``grid`` (x_range_m, y_range_m,
 spacing_m, height_m), ``microphones`` (name → [x, y, z] m), ``ground`` (model,
-flow_resistivity_kPa_s_m2, coherent), ``atmosphere`` (isa_delta_K, relative_humidity_pct),
+flow_resistivity_kPa_s_m2, coherent), ``ground_as_written`` (the ``ground`` slice as the configuration
+writes it, recorded in the metadata), ``atmosphere`` (isa_delta_K, relative_humidity_pct),
 ``absorption`` (bool), ``aircraft``.
 """
 
@@ -27,8 +28,8 @@ from nps.mission.trajectory import mission_path
 
 
 def ground_model(spec: dict) -> Ground:
-    """:class:`nps.mission.propagation.Ground` from the ``ground`` configuration slice."""
-    return Ground(spec.get("model", "hard"), float(spec.get("flow_resistivity_kPa_s_m2", 200.0)), bool(spec.get("coherent", True)))
+    """:class:`nps.mission.propagation.Ground` from the ``ground`` configuration slice (defaults filled)."""
+    return Ground(spec["model"], float(spec["flow_resistivity_kPa_s_m2"]), bool(spec["coherent"]))
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:
@@ -41,7 +42,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
             raise KeyError(f"footprint: input '{key}' (the source hemisphere of profile segment {segment}) is missing")
         hemispheres[segment] = hemisphere_from_table(read_table(inputs[key]), what=str(inputs[key]))
     g = params["grid"]
-    grid = GroundGrid(tuple(g["x_range_m"]), tuple(g["y_range_m"]), float(g["spacing_m"]), float(g.get("height_m", 1.2)))
+    grid = GroundGrid(tuple(g["x_range_m"]), tuple(g["y_range_m"]), float(g["spacing_m"]), float(g["height_m"]))
     atm = params["atmosphere"]
     c = isa(0.0, atm["isa_delta_K"], atm["relative_humidity_pct"]).speed_of_sound_mps
     fp = mission_footprint(path, hemispheres, grid, {k: tuple(v) for k, v in params["microphones"].items()}, c,
@@ -49,7 +50,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
                            absorption=bool(params["absorption"]))
     meta = {"aircraft": aircraft, "mission": params["mission"]["name"], "legs": fp.segments,
             "knots_m": path.knot_position_m.tolist(), "knot_time_s": path.knot_time_s.tolist(),
-            "ground": dict(params["ground"]), "grid": dict(g), "inputs": sorted(str(v) for v in inputs.values())}
+            "ground": dict(params["ground_as_written"]), "grid": dict(g), "inputs": sorted(str(v) for v in inputs.values())}
     write_table(fp.grid, outputs["grid"], stage="footprint", metadata=meta)
     write_table(fp.microphones, outputs["microphones"], stage="footprint", metadata=meta)
     write_table(fp.histories, outputs["histories"], stage="footprint", metadata=meta)

@@ -36,7 +36,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     for name, rotor in params["rotors"].items():
         geometry, control = RotorGeometry.from_config(rotor), RotorControl.from_config(rotor)
         solution = loads_at_trim(geometry, OperatingPoint.from_trim_row(trim_row(trim, name, inputs["trim"])), grid, control,
-                                 tip_loss=bool(rotor.get("tip_loss", True)))
+                                 tip_loss=bool(rotor["tip_loss"]))
         result = solution.result
         summary = result.summary() if control.mode == "collective" else solution.summary()
         warnings = validity.recorded(validity.loads_findings(name, result.summary()), params,

@@ -55,7 +55,7 @@ def _bpm_band_msp(inputs: dict, params: dict, trim, observers, atmosphere) -> tu
         outside = float(np.mean(disk_outside_bpm_range(disk, medium)))
         if outside > 0.0:
             notes.append(f"BPM: rotor '{name}': {100 * outside:.0f} % of the blade elements outside RP-1218's data range "
-                         "(Re_c, Mach ≤ 0.21, |α| ≤ 25.2°): extrapolated (docs/models/bpm.md)")
+                         "(Re_c, Mach ≤ 0.21, |α| ≤ 25.2°): extrapolated (docs/reference/bpm.md)")
     return out, notes
 
 
@@ -97,7 +97,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
             row = trim_row(trim, name, str(inputs["trim"]))
             outside = pegg_outside_range(float(row["radius_m"]), float(row["omega_rad_s"]) * float(row["radius_m"]),
                                          float(row["thrust_N"]))
-            notes += [f"Pegg: rotor '{name}': {m}; consider models.broadband: bpm (docs/models/broadband_metrics.md)"
+            notes += [f"Pegg: rotor '{name}': {m}; consider models.broadband: bpm (docs/reference/broadband_metrics.md)"
                       for m in outside]
     elif model == "bpm":
         if "disks" not in inputs or "rotor_configs" not in params:

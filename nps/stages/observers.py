@@ -1,7 +1,7 @@
 """Stage ``observers``: one configured observer set of an aircraft in one segment (nps.noise.observers).
 
 inputs: ``trim`` (hub positions in G at t = 0, aircraft velocity). outputs: ``observers``, the
-observer table of docs/conventions.md: ``observer``, ``x_m``, ``y_m``, ``z_m`` (G, t = 0),
+observer table of docs/reference/conventions.md: ``observer``, ``x_m``, ``y_m``, ``z_m`` (G, t = 0),
 ``vx_mps``, ``vy_mps``, ``vz_mps``, ``azimuth_deg``, ``elevation_deg`` (map convention, seen from the
 set's centre) plus the set's own descriptive columns. params: ``spec`` (``observer_sets.<name>``),
 ``rotor_roles`` (rotor name → role: the centre is the mean hub of the lift rotors),

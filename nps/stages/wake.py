@@ -12,10 +12,10 @@ inputs: ``trim`` (trim.parquet), ``loads`` (directory of the loads stage). outpu
 (directory: ``{rotor}.parquet`` wake geometry, :data:`nps.wake.prescribed.WAKE_COLUMNS`, one row per vortex
 node per snapshot over one blade passage, ``{rotor}_vtk/``, with the free wake ``interaction.parquet``), ``bvi`` (directory:
 ``{rotor}.parquet``, BVI disk table with the loads' columns). params: ``rotors`` (rotor name →
-validated rotor configuration), ``wake`` (config ``wake`` section: model, A, B, C, D,
-core_radius_chords, core_growth, vortex_structure, optional free), ``revolutions`` (wake age kept), ``steps_per_rev`` (vortex segments per revolution),
-``aircraft``, ``segment``; optional ``step_deg`` (snapshot spacing, default 5°), ``unsteady``
-(Sears response, default true), ``allow_outside_validity`` (campaign switch, default false).
+validated rotor configuration), ``wake`` (the config ``wake`` section, defaults filled: model, A, B, C, D,
+core_radius_chords, core_growth, vortex_structure, step_deg (snapshot spacing), unsteady (Sears response),
+free), ``revolutions`` (wake age kept), ``steps_per_rev`` (vortex segments per revolution),
+``aircraft``, ``segment``; optional ``allow_outside_validity`` (campaign switch, default false).
 
 Before computing: provenance of the trim and loads artifacts (aircraft, segment, rotor), memory
 (nps.app.resources) and, per rotor, the wake length (nps.app.validity.wake_findings).
@@ -57,8 +57,8 @@ def _vtk_series(directory: Path, rotor: str, state: wake.WakeState, table, psi, 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:
     model = wake.WakeModel.from_config(params["wake"], params["revolutions"], int(params["steps_per_rev"]))
-    bvi_model = bvi.BVIModel(unsteady=bool(params.get("unsteady", True)))
-    step_deg = float(params.get("step_deg", 5.0))
+    bvi_model = bvi.BVIModel(unsteady=bool(params["wake"]["unsteady"]))
+    step_deg = float(params["wake"]["step_deg"])
     same = {"aircraft": params["aircraft"], "segment": params["segment"]}
     check_provenance(inputs["trim"], {"stage": TRIM_STAGES, **same})
     trim = read_table(inputs["trim"], required=TRIM_COLUMNS, nonempty=True)
@@ -76,16 +76,16 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     check_memory(estimate_bytes("wake", {"n_psi": model.steps_per_rev, "n_r": disks[names[0]]["r_m"].nunique(),
                                           "wake_revolutions": model.revolutions}, n_rotors=len(names)),
                  f"{wake_dir}: wake of {model.revolutions:g} revolutions x {model.steps_per_rev} steps")
-    free = params["wake"].get("model", "beddoes") == "free"
+    free = params["wake"]["model"] == "free"
     if free:
         coupled = interaction.aircraft_bvi_loads(trim, params["rotors"], disks, summaries, model,
-                                                 freewake.FreeWakeModel.from_config(params["wake"].get("free")), bvi_model)
+                                                 freewake.FreeWakeModel.from_config(params["wake"]["free"]), bvi_model)
     report = []
     for name, rotor in params["rotors"].items():
         disk, inputs_of = disks[name], [str(paths[name][0]), str(paths[name][1]), str(inputs["trim"])]
         ct = bvi.summary_value(summaries[name], "ct", str(paths[name][1]))
         row = trim_row(trim, name, str(inputs["trim"]))
-        meta = {"aircraft": params["aircraft"], "segment": params["segment"], "rotor": name, "wake_model": model.__dict__,
+        meta = {"aircraft": params["aircraft"], "segment": params["segment"], "rotor": name, "wake_model": model.record(),
                 **warnings[name]}
         # wake geometry snapshots over one blade passage (the wake is periodic in 2π/B)
         state = bvi.wake_state(disk, row, ct)
@@ -103,6 +103,6 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
                       f"peak |dU_T| = {abs(result.d_ut_mps).max():.4g} m/s" + validity.report(warnings[name]))
     if free:
         write_table(coupled.summary, wake_dir / "interaction.parquet", stage="wake",
-                    metadata={"aircraft": params["aircraft"], "segment": params["segment"], "free_wake": params["wake"].get("free", {})})
+                    metadata={"aircraft": params["aircraft"], "segment": params["segment"], "free_wake": params["wake"]["free"]})
         report.append(coupled.summary.to_string(index=False))
     return "\n".join(report)

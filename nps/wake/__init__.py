@@ -11,5 +11,6 @@ Layer 2 (beside :mod:`nps.noise`, which it does not import): imports :mod:`nps.r
 """
 
 from nps.wake.prescribed import WAKE_COLUMNS, WakeModel
+from nps.wake.vortex import VortexModel
 
-__all__ = ["WAKE_COLUMNS", "WakeModel"]
+__all__ = ["WAKE_COLUMNS", "VortexModel", "WakeModel"]

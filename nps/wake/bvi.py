@@ -45,7 +45,7 @@ the phase stays the incompressible one (Amiet's phase terms, and its factor |J0 
 ≥ 0.94 for k ≤ 1 and M ≤ 0.65, are left out). At the advancing-side BVI (M ≈ 0.6–0.65) this
 lowers the 10–40/rev response by a further ≈ 20 %.
 
-Frames and signs: docs/conventions.md; choices: docs/models/wake_bvi.md.
+Frames and signs: docs/reference/conventions.md; choices: docs/reference/wake_bvi.md.
 """
 
 from __future__ import annotations
@@ -55,12 +55,13 @@ from dataclasses import dataclass
 from functools import lru_cache
 from typing import Mapping
 
-import numba as nb
 import numpy as np
 import pandas as pd
 from scipy import special
 
+from nps.core.jit import kernel, prange
 from nps.wake import prescribed as wake
+from nps.wake import vortex
 from nps.rotor.geometry import RotorGeometry
 
 DISK_COLUMNS = (
@@ -149,8 +150,8 @@ def wake_state(disk: pd.DataFrame, trim_row: Mapping, ct: float) -> wake.WakeSta
     """The wake's flow state from a trimmed disk table, its trim row and the loads' C_T.
 
     Γ_v(ψ) is the spanwise maximum bound circulation of each azimuth row
-    (:func:`nps.wake.prescribed.tip_vortex_strength`), the vortex structure its Betz roll-up
-    (:func:`nps.wake.prescribed.vortex_profile_table`); β(ψ) the flap angle of the outermost station.
+    (:func:`nps.wake.vortex.tip_vortex_strength`), the vortex structure its Betz roll-up
+    (:func:`nps.wake.vortex.vortex_profile_table`); β(ψ) the flap angle of the outermost station.
     """
     grid = disk_grid(disk)
     missing = [c for c in ("n_blades", "radius_m", "omega_rad_s", "rotation_sign", "mu_x", "mu_y", "mu_z") if c not in trim_row]
@@ -169,9 +170,9 @@ def wake_state(disk: pd.DataFrame, trim_row: Mapping, ct: float) -> wake.WakeSta
         mu_y=float(trim_row["mu_y"]),
         mu_z=float(trim_row["mu_z"]),
         ct=float(ct),
-        gamma_table_m2_s=wake.tip_vortex_strength(gamma),
+        gamma_table_m2_s=vortex.tip_vortex_strength(gamma),
         beta_table_rad=beta[:, -1].copy(),
-        vortex_profile=wake.vortex_profile_table(grid.r_m, gamma, float(trim_row["radius_m"])),
+        vortex_profile=vortex.vortex_profile_table(grid.r_m, gamma, float(trim_row["radius_m"])),
     )
 
 
@@ -218,7 +219,7 @@ def _sears_table() -> np.ndarray:
     return np.ascontiguousarray(np.stack([s.real, s.imag], axis=1))
 
 
-@nb.njit(cache=True, inline="always")
+@kernel(inline=True)
 def _sears_log(log_k, table):
     """S(k) (re, im) from ln k by linear interpolation in the log-spaced table."""
     if log_k < _LOG_K_MIN:
@@ -230,7 +231,7 @@ def _sears_log(log_k, table):
     return (1.0 - w) * table[i, 0] + w * table[i + 1, 0], (1.0 - w) * table[i, 1] + w * table[i + 1, 1]
 
 
-@nb.njit(cache=True, inline="always")
+@kernel(inline=True)
 def _sears_scaled(log_k, log_inv_beta_sq, table):
     """S(k) with magnitude |S(k/β²)| (phase of S(k)); log_inv_beta_sq = ln(1/β²), 0 = off."""
     s_re, s_im = _sears_log(log_k, table)
@@ -243,7 +244,7 @@ def _sears_scaled(log_k, log_inv_beta_sq, table):
     return s_re, s_im
 
 
-@nb.njit(cache=True)
+@kernel
 def _transfer_array(k, log_inv_beta_sq, table):
     """S(k) e^{−ik/2} (compressible magnitude) for arrays k ≥ 0 (k = 0 gives 1)."""
     out = np.empty(k.size, dtype=np.complex128)
@@ -269,14 +270,14 @@ def gust_transfer(k, beta_sq=None) -> np.ndarray:
     return flat.reshape(k.shape)
 
 
-@nb.njit(cache=True, parallel=True)
+@kernel(parallel=True)
 def _frozen_filter(spectrum, half_chord_time, log_inv_beta_sq, weight, table):
     """y[i, j, m] = Re Σ_n w_n X[n, j, m] S(k) e^{i(nψ_i − k/2)} / N, k = n h[i, j] (module doc)."""
     n_h, n_r, n_f = spectrum.shape
     n_psi = half_chord_time.shape[0]
     log_n = np.log(np.maximum(np.arange(n_h), 1.0))
     out = np.zeros((n_psi, n_r, n_f))
-    for j in nb.prange(n_r):
+    for j in prange(n_r):
         for i in range(n_psi):
             h = half_chord_time[i, j]
             log_h, lib = math.log(h), log_inv_beta_sq[i, j]

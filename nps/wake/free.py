@@ -1,6 +1,6 @@
 """Free-vortex tip wake of all rotors of an aircraft, relaxed to the periodic state.
 
-Equations, constants and their sources: ``docs/models/wake_bvi.md`` ("Free-vortex wake").
+Equations, constants and their sources: ``docs/reference/wake_bvi.md`` ("Free-vortex wake").
 
 Unknowns. For every rotor q, the tip vortex trailed by blade 0 is stored as node positions
 X_q[i, j] in the rotor's ccw-equivalent hub frame H'_q (metres, :mod:`nps.wake.prescribed`): blade 0 at
@@ -16,7 +16,7 @@ Kinematics. In the frame moving with the aircraft every node moves with the loca
                                                  + V_rings(X; far-wake continuation of p)]
 
 V_∞,q = Ω_q R_q (μ_x, s μ_y, −μ_z) (NPS signs, H'_q), V_BS the Biot–Savart velocity of
-straight segments with a Vatistas core (:func:`nps.wake.prescribed._segment`); a blade's bound vortex
+straight segments with a Vatistas core (:func:`nps.wake.vortex.segment_velocity`); a blade's bound vortex
 runs from the hub centre to its tip node (horseshoe with the tip vortex). Rotor p's wake enters
 rotor q's equations at the same time t = ψ_i/Ω_q, i.e. at p's azimuth Ω_p t (blade 0 of every
 rotor is at ψ = 0 at t = 0, as in :class:`nps.rotor.geometry.RotorMotion`); p's distortion is
@@ -45,9 +45,10 @@ geometry. Stabilising scheme: under-relaxation X⁽ⁿ⁾ = X⁽ⁿ⁻¹⁾ + ω
 vortex–vortex encounters that the straight segments of the coarse grid cannot resolve). Converged when max |X⁽ⁿ⁾ − X⁽ⁿ⁻¹⁾| < ``tolerance_radius_fraction`` · R for
 every rotor; non-finite nodes or no convergence raise :class:`FreeWakeError`.
 
-Cores. Node kinematics use r_c² = r_c0² + 4 α δ ν φ/Ω, δ = 1 + a₁ Γ/ν (Squire /
-Bhagwat–Leishman) with r_c0 = max(HART-II PIV core, floor); blade loads keep the lifting-line
-core of :class:`nps.wake.prescribed.WakeModel` (c/2, chordwise averaging; docs).
+Vortices (:class:`nps.wake.vortex.VortexModel`). Node kinematics: ``FreeWakeModel.vortex``, point
+vortices with r_c² = r_c0² + 4 α δ ν φ/Ω, δ = 1 + a₁ Γ/ν (Squire / Bhagwat–Leishman) and
+r_c0 = max(HART-II PIV core, floor) (``FreeWakeModel.kinematics_vortex``); blade loads: the
+lifting-line vortex of the Beddoes model, ``WakeModel.vortex`` (c/2, chordwise averaging; docs).
 """
 
 from __future__ import annotations
@@ -58,17 +59,20 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from nps.wake import prescribed as wake
 from nps.core.jit import kernel, prange
+from nps.wake import prescribed as wake
+from nps.wake.vortex import (POINT_VORTEX_PROFILE, VortexModel, add_polyline_velocity, core_radius, profile_row,
+                              segment_velocity)
 
 # r_c0 / c of a young tip vortex: HART-II PIV (van der Wall & Richard 2006; Yu et al. 2002),
 # core radii of ≈ 0.14 c for the young advancing- and retreating-side vortices.
 HART_II_CORE_RADIUS_CHORDS = 0.14
-# Bhagwat & Leishman (2000): δ = 1 + a₁ Γ_v/ν with a₁ = 6.5e-5 from rotor tip-vortex measurements.
-BHAGWAT_LEISHMAN_A1 = 6.5e-5
+# The physical tip vortex of the node kinematics: the HART-II core, growing with age (Squire /
+# Bhagwat–Leishman), a point vortex.
+FREE_WAKE_VORTEX = VortexModel(core_radius_chords=HART_II_CORE_RADIUS_CHORDS, core_growth=True, vortex_structure="point")
 # Rotors are coupled when one's far-field velocity estimate at the other reaches this fraction
 # of the other's mean induced velocity: the rotor trim's relative thrust tolerance
-# (docs/models/wake_bvi.md, "Far-apart rotors").
+# (docs/reference/wake_bvi.md, "Far-apart rotors").
 COUPLING_THRESHOLD = 1e-3
 
 
@@ -78,35 +82,33 @@ class FreeWakeError(RuntimeError):
 
 @dataclass(frozen=True)
 class FreeWakeModel:
-    """Parameters of the free-wake relaxation (SI; docs/models/wake_bvi.md).
+    """Parameters of the free-wake relaxation (SI; docs/reference/wake_bvi.md).
 
     ``steps_per_rev`` N: relaxation grid Δψ = Δφ = 2π/N; ``revolutions``: free (relaxed) wake
     age; ``far_revolutions``: rigid far wake after it; ``continuation_radii``: length (in radii
     R of the source rotor) of the semi-infinite vortex-cylinder continuation beyond the far wake
-    in the node kinematics (0, the default: none; docs for why); ``core_radius_chords``: initial physical
-    core r_c0/c; ``core_floor_chords``: lower bound of r_c0/c in the node kinematics (the
-    resolution of the straight-segment wake on the relaxation grid; docs); ``core_growth``
-    with ``growth_a1`` and ``viscosity_m2_s``; ``relaxation`` ω in (0, 1]; ``tolerance_radius_fraction``:
+    in the node kinematics (0, the default: none; docs for why); ``vortex``: the physical tip
+    vortex of the node kinematics (:class:`nps.wake.vortex.VortexModel`, a point vortex; its
+    ``core_radius_chords`` is the initial physical core r_c0/c); ``core_floor_chords``: lower
+    bound (> 0) of r_c0/c in the node kinematics (the resolution of the straight-segment wake on
+    the relaxation grid; docs); ``relaxation`` ω in (0, 1]; ``tolerance_radius_fraction``:
     convergence when the largest node change between two iterations is below this × R;
-    ``max_iterations``; ``vatistas_n``; ``far_group_deg`` and ``far_group_distance``: in the
-    blade-load evaluation another rotor's vortex is summed in groups of this many degrees of
-    wake age, a group farther than ``far_group_distance`` × its half-extent from the blade station
-    counting as its chord segment (0: every segment; docs "Far-field grouping").
+    ``max_iterations``; ``far_group_deg`` and ``far_group_distance``: in the blade-load
+    evaluation another rotor's vortex is summed in groups of this many degrees of wake age, a
+    group farther than ``far_group_distance`` × its half-extent from the blade station counting
+    as its chord segment (0: every segment; docs "Far-field grouping"). Bounds as in the config
+    schema (``wake.free``).
     """
 
     steps_per_rev: int = 36
     revolutions: float = 1.5
     far_revolutions: float = 1.0
     continuation_radii: float = 0.0
-    core_radius_chords: float = HART_II_CORE_RADIUS_CHORDS
+    vortex: VortexModel = FREE_WAKE_VORTEX
     core_floor_chords: float = 1.0
-    core_growth: bool = True
-    growth_a1: float = BHAGWAT_LEISHMAN_A1
-    viscosity_m2_s: float = wake.AIR_KINEMATIC_VISCOSITY_M2_S
     relaxation: float = 0.5
     tolerance_radius_fraction: float = 0.01
     max_iterations: int = 60
-    vatistas_n: float = 2.0
     far_group_deg: float = 8.0
     far_group_distance: float = 4.0
 
@@ -116,14 +118,11 @@ class FreeWakeModel:
             "revolutions": self.revolutions > 0.0,
             "far_revolutions": self.far_revolutions >= 0.0,
             "continuation_radii": self.continuation_radii >= 0.0,
-            "core_radius_chords": self.core_radius_chords > 0.0,
-            "core_floor_chords": self.core_floor_chords >= 0.0,
-            "growth_a1": self.growth_a1 >= 0.0,
-            "viscosity_m2_s": self.viscosity_m2_s > 0.0,
+            "vortex": self.vortex.vortex_structure == "point",
+            "core_floor_chords": self.core_floor_chords > 0.0,
             "relaxation": 0.0 < self.relaxation <= 1.0,
             "tolerance_radius_fraction": self.tolerance_radius_fraction > 0.0,
             "max_iterations": self.max_iterations >= 1,
-            "vatistas_n": self.vatistas_n >= 1.0,
             "far_group_deg": 0.0 <= self.far_group_deg <= 90.0,
             "far_group_distance": self.far_group_distance >= 2.0,
         }
@@ -133,13 +132,23 @@ class FreeWakeModel:
 
     @classmethod
     def from_config(cls, block: Mapping | None) -> "FreeWakeModel":
-        """From an optional config mapping with any of the field names (defaults elsewhere);
-        unknown keys are an error naming them."""
+        """From the optional config ``wake.free`` mapping: the relaxation's field names and the
+        vortex's (``core_radius_chords``, ``core_growth``, ``vatistas_n``, …; the schema gives no
+        defaults there, absent keys keep this class's and :data:`FREE_WAKE_VORTEX`'s). Unknown
+        keys are an error naming them."""
         block = dict(block or {})
-        unknown = sorted(set(block) - set(cls.__dataclass_fields__))
+        own = set(cls.__dataclass_fields__) - {"vortex"}
+        of_vortex = set(VortexModel.__dataclass_fields__) - {"vortex_structure"}
+        unknown = sorted(set(block) - own - of_vortex)
         if unknown:
-            raise ValueError(f"FreeWakeModel: unknown field(s) {unknown}; expected some of {sorted(cls.__dataclass_fields__)}")
-        return cls(**block)
+            raise ValueError(f"FreeWakeModel: unknown field(s) {unknown}; expected some of {sorted(own | of_vortex)}")
+        vortex = replace(FREE_WAKE_VORTEX, **{key: block.pop(key) for key in sorted(of_vortex & set(block))})
+        return cls(vortex=vortex, **block)
+
+    @property
+    def kinematics_vortex(self) -> VortexModel:
+        """The vortex of the node kinematics: ``vortex`` with r_c0 = max(physical core, floor)."""
+        return replace(self.vortex, core_radius_chords=max(self.vortex.core_radius_chords, self.core_floor_chords))
 
     @property
     def n_age(self) -> int:
@@ -268,10 +277,11 @@ class _Sources:
     gamma: np.ndarray  # (n_rot, n_tab)
     beta: np.ndarray  # (n_rot, n_tab)
     distortion: np.ndarray  # (n_rot, N, J+1, 3)
-    core: np.ndarray  # (n_rot, 3): r_c0, growth coefficient, a1/ν
-    profiles: np.ndarray  # (n_rot, n_rows, M) structure-factor coefficients (wake.vortex_profiles), zero-padded
+    core: np.ndarray  # (n_rot, 3): VortexModel.core_constants (r_c0, growth coefficient, a1/ν)
+    profiles: np.ndarray  # (n_rot, n_rows, M) VortexModel.structure_coefficients, zero-padded
     profile_rows: np.ndarray  # (n_rot,) int: each rotor's number of release azimuths in it
     profile_s2: np.ndarray  # (n_rot,) scale s² of the structure factor (m²)
+    vatistas_n: float
 
 
 def _common_tables(rotors: Sequence[RotorPlacement]) -> tuple[np.ndarray, np.ndarray]:
@@ -286,34 +296,29 @@ def _common_tables(rotors: Sequence[RotorPlacement]) -> tuple[np.ndarray, np.nda
     return np.ascontiguousarray([o[0] for o in out]), np.ascontiguousarray([o[1] for o in out])
 
 
-def _sources(rotors, beddoes: wake.WakeModel, distortion, core_radius_chords, core_growth, growth_a1, viscosity,
-             vortex_structure: str) -> _Sources:
+def _sources(rotors, beddoes: wake.WakeModel, distortion, vortex: VortexModel) -> _Sources:
+    """The rotors' Beddoes geometry (``beddoes``) and ``distortion`` carrying ``vortex``."""
     gamma, beta = _common_tables(rotors)
     params = np.ascontiguousarray([wake.wake_scalars(r.state, beddoes) for r in rotors])
-    core = np.array([
-        [core_radius_chords * r.state.chord_m,
-         4.0 * wake.LAMB_OSEEN_ALPHA * viscosity / r.state.omega_rad_s if core_growth else 0.0,
-         growth_a1 / viscosity] for r in rotors])
-    structure = replace(beddoes, vortex_structure=vortex_structure)
-    tables = [wake.vortex_profiles(r.state, structure) for r in rotors]
+    core = np.array([vortex.core_constants(r.state.chord_m, r.state.omega_rad_s) for r in rotors])
+    tables = [vortex.structure_coefficients(r.state.vortex_profile, r.state.radius_m, r.state.chord_m) for r in rotors]
     profiles = np.zeros((len(rotors), max(t[0].shape[0] for t in tables), max(t[0].shape[1] for t in tables)))
     for q, (table, _) in enumerate(tables):
         profiles[q, : table.shape[0], : table.shape[1]] = table
     return _Sources(params, gamma, beta, np.ascontiguousarray(distortion, dtype=float), core, profiles,
-                    np.array([t[0].shape[0] for t in tables], dtype=np.int64), np.array([t[1] for t in tables]))
+                    np.array([t[0].shape[0] for t in tables], dtype=np.int64), np.array([t[1] for t in tables]),
+                    float(vortex.vatistas_n))
 
 
 def _physical_sources(rotors, beddoes, model: FreeWakeModel, distortion) -> _Sources:
-    """Node kinematics: point vortices, r_c0 = max(physical core, floor) · c, growing with age."""
-    return _sources(rotors, beddoes, distortion, max(model.core_radius_chords, model.core_floor_chords),
-                    model.core_growth, model.growth_a1, model.viscosity_m2_s, "point")
+    """Node kinematics: :attr:`FreeWakeModel.kinematics_vortex` (point vortices, r_c0 = max(physical
+    core, floor) · c, growing with age)."""
+    return _sources(rotors, beddoes, distortion, model.kinematics_vortex)
 
 
 def _lifting_line_sources(rotors, beddoes: wake.WakeModel, distortion) -> _Sources:
-    """Blade-load evaluation: the Beddoes model's lifting-line core and vortex structure (as the
-    prescribed wake)."""
-    return _sources(rotors, beddoes, distortion, beddoes.core_radius_chords, beddoes.core_growth, beddoes.growth_a1,
-                    beddoes.viscosity_m2_s, beddoes.vortex_structure)
+    """Blade-load evaluation: the Beddoes model's lifting-line vortex (as the prescribed wake)."""
+    return _sources(rotors, beddoes, distortion, beddoes.vortex)
 
 
 def _transforms(rotors: Sequence[RotorPlacement], target: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -364,18 +369,18 @@ def _rotor_nodes(p, gamma_tab, beta_tab, table, table_step, core, psi0, n_age, d
                  row):
     """Nodes (B, n_age+1, 3) in the rotor's own H' when its blade 0 is at ``psi0``: Beddoes
     geometry plus the interpolated distortion; Γ, core radius and structure-factor row (of
-    ``n_rows``, :func:`nps.wake.prescribed.profile_row`) per node."""
+    ``n_rows``, :func:`nps.wake.vortex.profile_row`) per node; ``core``: :meth:`VortexModel.core_constants`."""
     n_blades = int(p[1])
     for k in range(n_blades):
         psi_k = psi0 + 2.0 * math.pi * k / n_blades
         for j in range(n_age + 1):
             phi = j * dphi
-            x, y, z, g = wake._node(p, gamma_tab, beta_tab, psi_k - phi, phi)
+            x, y, z, g = wake.node_position(p, gamma_tab, beta_tab, psi_k - phi, phi)
             dx, dy, dz = _distortion_at(table, psi_k, phi, table_step)
             nodes[k, j, 0], nodes[k, j, 1], nodes[k, j, 2] = x + dx, y + dy, z + dz
             strength[k, j] = g
-            radius[k, j] = math.sqrt(core[0] * core[0] + core[1] * (1.0 + core[2] * abs(g)) * phi)
-            row[k, j] = wake.profile_row(psi_k - phi, n_rows)
+            radius[k, j] = core_radius(core, g, phi)
+            row[k, j] = profile_row(psi_k - phi, n_rows)
 
 
 @kernel(inline=True)
@@ -386,9 +391,9 @@ def _add_bound(vx, vy, vz, px, py, pz, hub, nodes, k, gamma, rc, vatistas_n):
     for m in range(px.shape[0]):
         h1x, h1y, h1z = px[m] - hub[0], py[m] - hub[1], pz[m] - hub[2]
         t1x, t1y, t1z = px[m] - nodes[k, 0, 0], py[m] - nodes[k, 0, 1], pz[m] - nodes[k, 0, 2]
-        dx, dy, dz = wake._segment(h1x, h1y, h1z, math.sqrt(h1x * h1x + h1y * h1y + h1z * h1z),
-                                   t1x, t1y, t1z, math.sqrt(t1x * t1x + t1y * t1y + t1z * t1z), gamma, rc, vatistas_n,
-                                   False, wake.POINT_VORTEX_PROFILE[0], 1.0)
+        dx, dy, dz = segment_velocity(h1x, h1y, h1z, math.sqrt(h1x * h1x + h1y * h1y + h1z * h1z),
+                                      t1x, t1y, t1z, math.sqrt(t1x * t1x + t1y * t1y + t1z * t1z), gamma, rc, vatistas_n,
+                                      False, POINT_VORTEX_PROFILE[0], 1.0)
         vx[m] += dx
         vy[m] += dy
         vz[m] += dz
@@ -421,6 +426,52 @@ def _far_groups(nodes, strength, radius, n_blades, n_age, group, ratio, groups):
             groups[k, g, 3] = ratio * ratio * extent
             groups[k, g, 4] = s / (j1 - j0)
             groups[k, g, 5] = rc / (j1 - j0)
+
+
+@kernel(inline=True)
+def _to_target(nodes, n_blades, n_age, rot, off):
+    """Map the nodes (B, n_age+1, 3) in place from the source rotor's H' to the target's:
+    x ↦ rot x + off (``rot`` (3, 3), ``off`` (3,), :func:`_transforms`)."""
+    for k in range(n_blades):
+        for j in range(n_age + 1):
+            x, y, z = nodes[k, j, 0], nodes[k, j, 1], nodes[k, j, 2]
+            nodes[k, j, 0] = rot[0, 0] * x + rot[0, 1] * y + rot[0, 2] * z + off[0]
+            nodes[k, j, 1] = rot[1, 0] * x + rot[1, 1] * y + rot[1, 2] * z + off[1]
+            nodes[k, j, 2] = rot[2, 0] * x + rot[2, 1] * y + rot[2, 2] * z + off[2]
+
+
+@kernel(inline=True)
+def _add_grouped(px, py, pz, nodes, strength, radius, row, groups, profiles, s2, k, group, n_age, g_sign, vatistas_n,
+                 near, scratch, vx, vy, vz):
+    """Add to (vx, vy, vz) (n_pts,) the velocity at (px, py, pz) of blade k's tip vortex in groups of
+    ``group`` segments (``groups``: :func:`_far_groups`): a group beyond its far distance from a
+    point counts as its chord segment (with the structure-factor row of its first node), a near
+    one segment by segment. ``near`` (n_pts,) int and ``scratch`` (4, n_pts): work arrays."""
+    n_groups = (n_age + group - 1) // group
+    for g in range(n_groups):
+        j0 = g * group
+        j1 = min(j0 + group, n_age)
+        n_near = 0
+        for m in range(px.shape[0]):  # the chord of every far group, all points at once
+            dx, dy, dz = px[m] - groups[k, g, 0], py[m] - groups[k, g, 1], pz[m] - groups[k, g, 2]
+            is_far = dx * dx + dy * dy + dz * dz > groups[k, g, 3]
+            r1x, r1y, r1z = px[m] - nodes[k, j0, 0], py[m] - nodes[k, j0, 1], pz[m] - nodes[k, j0, 2]
+            r2x, r2y, r2z = px[m] - nodes[k, j1, 0], py[m] - nodes[k, j1, 1], pz[m] - nodes[k, j1, 2]
+            dx, dy, dz = segment_velocity(
+                r1x, r1y, r1z, math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z),
+                r2x, r2y, r2z, math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z),
+                g_sign * groups[k, g, 4], groups[k, g, 5], vatistas_n, profiles.shape[1] > 1, profiles[row[k, j0]], s2,
+            )
+            vx[m] += dx if is_far else 0.0
+            vy[m] += dy if is_far else 0.0
+            vz[m] += dz if is_far else 0.0
+            near[n_near] = m
+            n_near += 0 if is_far else 1
+        for e in range(n_near):  # segment by segment where the group is near
+            m = near[e]
+            add_polyline_velocity(px[m:m + 1], py[m:m + 1], pz[m:m + 1], nodes, strength, radius, profiles, row, s2, k,
+                                  j0, j1, g_sign, vatistas_n, scratch[0, :1], scratch[1, :1], scratch[2, :1],
+                                  scratch[3, :1], vx[m:m + 1], vy[m:m + 1], vz[m:m + 1])
 
 
 @kernel(parallel=True)
@@ -461,63 +512,32 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
             n_blades = int(params[q, 1])
             _rotor_nodes(params[q], gamma[q], beta[q], distortion[q], table_step, core[q],
                          omega_ratio[t, q] * row_psi[i], n_age, dphi, profile_rows[q], nodes, strength, radius, row)
+            _to_target(nodes, n_blades, n_age, rot[t, q], off[t, q])
             q_profiles, s2 = profiles[q], profile_s2[q]
-            for k in range(n_blades):
-                for j in range(n_age + 1):
-                    x, y, z = nodes[k, j, 0], nodes[k, j, 1], nodes[k, j, 2]
-                    nodes[k, j, 0] = rot[t, q, 0, 0] * x + rot[t, q, 0, 1] * y + rot[t, q, 0, 2] * z + off[t, q, 0]
-                    nodes[k, j, 1] = rot[t, q, 1, 0] * x + rot[t, q, 1, 1] * y + rot[t, q, 1, 2] * z + off[t, q, 1]
-                    nodes[k, j, 2] = rot[t, q, 2, 0] * x + rot[t, q, 2, 1] * y + rot[t, q, 2, 2] * z + off[t, q, 2]
             g_sign = sign[t, q]
             vx[:] = 0.0
             vy[:] = 0.0
             vz[:] = 0.0
-            if far[t, q] and group > 1:
+            grouped = far[t, q] and group > 1
+            if grouped:
                 _far_groups(nodes, strength, radius, n_blades, n_age, group, ratio, groups)
-                for k in range(n_blades):
-                    for g in range(n_groups):
-                        j0 = g * group
-                        j1 = min(j0 + group, n_age)
-                        n_near = 0
-                        for m in range(n_pts):  # the chord of every far group, all points at once
-                            dx, dy, dz = px[m] - groups[k, g, 0], py[m] - groups[k, g, 1], pz[m] - groups[k, g, 2]
-                            is_far = dx * dx + dy * dy + dz * dz > groups[k, g, 3]
-                            r1x, r1y, r1z = px[m] - nodes[k, j0, 0], py[m] - nodes[k, j0, 1], pz[m] - nodes[k, j0, 2]
-                            r2x, r2y, r2z = px[m] - nodes[k, j1, 0], py[m] - nodes[k, j1, 1], pz[m] - nodes[k, j1, 2]
-                            dx, dy, dz = wake._segment(
-                                r1x, r1y, r1z, math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z),
-                                r2x, r2y, r2z, math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z),
-                                g_sign * groups[k, g, 4], groups[k, g, 5], vatistas_n, q_profiles.shape[1] > 1,
-                                q_profiles[row[k, j0]], s2,
-                            )
-                            vx[m] += dx if is_far else 0.0
-                            vy[m] += dy if is_far else 0.0
-                            vz[m] += dz if is_far else 0.0
-                            near[n_near] = m
-                            n_near += 0 if is_far else 1
-                        for e in range(n_near):  # segment by segment where the group is near
-                            m = near[e]
-                            wake._polyline_points(px[m:m + 1], py[m:m + 1], pz[m:m + 1], nodes, strength, radius,
-                                                  q_profiles, row, s2, k, j0, j1, g_sign, vatistas_n, scratch[0, :1],
-                                                  scratch[1, :1], scratch[2, :1], scratch[3, :1], vx[m:m + 1],
-                                                  vy[m:m + 1], vz[m:m + 1])
-                    if bound[t, q]:
-                        _add_bound(vx, vy, vz, px, py, pz, off[t, q], nodes, k, g_sign * strength[k, 0], core[q, 0],
-                                   vatistas_n)
-            else:
-                for k in range(n_blades):
-                    wake._polyline_points(px, py, pz, nodes, strength, radius, q_profiles, row, s2, k, 0, n_age,
+            for k in range(n_blades):
+                if grouped:
+                    _add_grouped(px, py, pz, nodes, strength, radius, row, groups, q_profiles, s2, k, group, n_age,
+                                 g_sign, vatistas_n, near, scratch, vx, vy, vz)
+                else:
+                    add_polyline_velocity(px, py, pz, nodes, strength, radius, q_profiles, row, s2, k, 0, n_age,
                                           g_sign, vatistas_n, scratch[0], scratch[1], scratch[2], scratch[3], vx, vy,
                                           vz)
-                    if bound[t, q]:
-                        _add_bound(vx, vy, vz, px, py, pz, off[t, q], nodes, k, g_sign * strength[k, 0], core[q, 0],
-                                   vatistas_n)
+                if bound[t, q]:
+                    _add_bound(vx, vy, vz, px, py, pz, off[t, q], nodes, k, g_sign * strength[k, 0], core[q, 0],
+                               vatistas_n)
             out[t, q, i, :, 0], out[t, q, i, :, 1], out[t, q, i, :, 2] = vx, vy, vz
     return out
 
 
 def _induced(rotors, sources: _Sources, targets, points, row_psi, n_age: int, dphi: float, table_step: float,
-             vatistas_n: float, own_bound: bool, far_group: int = 1, far_distance: float = 0.0) -> np.ndarray:
+             own_bound: bool, far_group: int = 1, far_distance: float = 0.0) -> np.ndarray:
     """Per-source induced velocity (n_tgt, n_src, n_rows, n_pts, 3) in each target's H' (m/s)
     at ``points`` (n_tgt, n_rows, n_pts, 3); ``targets``: rotor indices; bound vortices of the
     other rotors always, of the target itself when ``own_bound``; the other rotors' vortices
@@ -534,7 +554,7 @@ def _induced(rotors, sources: _Sources, targets, points, row_psi, n_age: int, dp
                            sources.params, sources.gamma, sources.beta, sources.distortion, float(table_step),
                            np.ascontiguousarray(sources.core), sources.profiles, sources.profile_rows,
                            sources.profile_s2, rot, off, sign, bound, far, max(int(far_group), 1),
-                           float(far_distance), int(n_age), float(dphi), float(vatistas_n))
+                           float(far_distance), int(n_age), float(dphi), sources.vatistas_n)
 
 
 def _node_table(rotor: RotorPlacement, beddoes: wake.WakeModel, model: FreeWakeModel) -> np.ndarray:
@@ -550,7 +570,7 @@ def _beddoes_table(p, gamma, beta, n_psi, n_age, step):
     out = np.empty((n_psi, n_age + 1, 3))
     for i in range(n_psi):
         for j in range(n_age + 1):
-            x, y, z, _ = wake._node(p, gamma, beta, i * step - j * step, j * step)
+            x, y, z, _ = wake.node_position(p, gamma, beta, i * step - j * step, j * step)
             out[i, j, 0], out[i, j, 1], out[i, j, 2] = x, y, z
     return out
 
@@ -563,7 +583,7 @@ def _node_velocities(rotors, beddoes, model, base, distortion) -> list[np.ndarra
     free = model.n_age + 1
     points = base[:, :, :free] + distortion[:, :, :free]
     v = _induced(rotors, sources, range(len(rotors)), points, psi,
-                 model.n_age + model.n_far, model.step_rad, model.step_rad, model.vatistas_n, True).sum(axis=1)
+                 model.n_age + model.n_far, model.step_rad, model.step_rad, True).sum(axis=1)
     out = [v[q] + r.free_stream_hp_mps for q, r in enumerate(rotors)]
     rings = [_continuation_rings(r, base[q] + distortion[q], sources.gamma[q], sources.core[q, 0], model)
              for q, r in enumerate(rotors)]
@@ -793,8 +813,7 @@ def disk_induced_velocity(solution: FreeWakeSolution, target: str, psi_rad, r_m,
     n_group = int(round(math.radians(model.far_group_deg) / solution.beddoes.dphi_rad))
     out = np.zeros((len(solution.rotors),) + points.shape)
     out[group] = _induced(rotors, sources, [group.index(t)], points[None], psi, solution.beddoes.n_age,
-                          solution.beddoes.dphi_rad, model.step_rad, solution.beddoes.vatistas_n, False, n_group,
-                          model.far_group_distance)[0]
+                          solution.beddoes.dphi_rad, model.step_rad, False, n_group, model.far_group_distance)[0]
     return out
 
 

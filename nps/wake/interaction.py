@@ -6,7 +6,7 @@ and loads summary (``loads/{rotor}_summary.parquet``). The wakes of all rotors a
 together (:func:`nps.wake.free.relax`); each rotor's blade stations then see the velocity of
 every rotor's wake, split by source rotor q, resolved into (ΔU_T, ΔU_P) (:mod:`nps.wake.bvi`).
 
-No double counting (docs/models/wake_bvi.md, "Rotor–rotor interaction"):
+No double counting (docs/reference/wake_bvi.md, "Rotor–rotor interaction"):
 
 - own wake (q = p): the trimmed BET's linear inflow already carries the mean and 1/rev
   effect of the rotor's wake *as if isolated*, so harmonics 0 and 1 of the own wake are

@@ -5,7 +5,8 @@ byte for byte (the committed manifest of tests/workflow/test_campaign.py's tiny 
 The kill is placed exactly: a ``sitecustomize`` module on the jobs' PYTHONPATH wraps
 ``pyarrow.parquet.write_table`` and, once the temporary file of the first metrics table is written
 (before ``nps.app.io.write_table`` renames it), kills the whole Snakemake process group with SIGKILL.
-About 25 s on an idle 2-core machine (helicopter only), so it runs by default.
+About 25 s on an idle 2-core machine (helicopter only); a second Snakemake campaign, so marked slow (the
+default run keeps one, tests/workflow/test_campaign.py's tiny campaign).
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ import pytest
 import yaml
 
 REPO = Path(__file__).resolve().parents[2]
-from campaigns import TINY
+from campaigns import TINY, tiny_manifest
 from nps.app.digests import compare, digests, read_manifest
 
 TARGET = "hemisphere_base.parquet"  # metrics table: written late, after most artifacts
@@ -50,6 +51,7 @@ def _snakemake(workdir: Path, *args: str, env: dict) -> subprocess.CompletedProc
     return subprocess.run(command, capture_output=True, text=True, env=env, timeout=1800, start_new_session=True)
 
 
+@pytest.mark.slow
 def test_sigkill_during_a_parquet_write_then_rerun_incomplete(tmp_path):
     work = tmp_path / "campaign"
     shutil.copytree(REPO / "config", work / "config")
@@ -69,6 +71,6 @@ def test_sigkill_during_a_parquet_write_then_rerun_incomplete(tmp_path):
     rerun = _snakemake(work, "-j2", "all", "--rerun-incomplete", env=env)
     assert rerun.returncode == 0, rerun.stderr[-3000:]
     assert not list((work / "results").rglob("*.tmp"))
-    manifest = {n: d for n, d in read_manifest(REPO / "tests/data/manifests/tiny_campaign.sha256").items()
+    manifest = {n: d for n, d in read_manifest(tiny_manifest()).items()
                 if n.startswith("helicopter/")}
     assert not compare(digests(work / "results", drop=("nps.validity_warnings",)), manifest)

@@ -261,7 +261,7 @@ def test_disk_range_check_flags_rows():
 def test_rotation_average_converges_near_the_rotor_plane():
     """Forward flight (μ = 0.2), observers 0° and 2° above the disk plane: 36 azimuths (with the
     directivity cell average) agree with 360 to 0.5 dB in every band (directivity only: no Doppler). Point sampling of D̄_h alone
-    missed a few-degree-wide peak at Θ_e → 180° and differed by up to 7.5 dB (docs/models/bpm.md)."""
+    missed a few-degree-wide peak at Θ_e → 180° and differed by up to 7.5 dB (docs/reference/bpm.md)."""
     n_psi, n_r, radius, omega, mu = 360, 10, 7.62, 28.0, 0.2
     edges = np.linspace(1.0, radius, n_r + 1)
     r = np.tile(0.5 * (edges[1:] + edges[:-1]), n_psi)

@@ -125,3 +125,22 @@ def test_yaml_syntax_error_names_file(tmp_path):
     path.write_text("name: [unclosed\n")
     with pytest.raises(ConfigError, match=r"broken.yaml: line 2, column 1: not valid YAML: expected ',' or '\]'"):
         read_yaml(path)
+
+
+@pytest.mark.parametrize("text, line, key", [
+    ("resolution:\n  n_psi: 72\n  n_r: 16\n  n_psi: 36000\n", 4, "n_psi"),
+    ("name: a\nrotors:\n  - name: main\n    radius_m: 5.0\n    radius_m: 50.0\n", 5, "radius_m"),
+    ("campaign: {mission: demo, mission: other}\n", 1, "mission"),
+])
+def test_a_key_given_twice_is_refused_with_its_line(tmp_path, text, line, key):
+    """PyYAML keeps the last of two equal keys; NPS refuses the file and names both lines."""
+    path = tmp_path / "config.yaml"
+    path.write_text(text)
+    with pytest.raises(ConfigError, match=rf"config.yaml: line {line}, column \d+: not valid YAML: duplicate key '{key}'"):
+        read_yaml(path)
+
+
+def test_merge_keys_may_override_what_they_merge(tmp_path):
+    path = tmp_path / "config.yaml"
+    path.write_text("base: &b {n_psi: 72, n_r: 16}\nresolution:\n  <<: *b\n  n_psi: 36\n")
+    assert read_yaml(path)["resolution"] == {"n_psi": 36, "n_r": 16}

@@ -11,6 +11,9 @@ from nps.stages import stage_function
 from nps.noise.spectra import third_octave_bands
 from tests.unit.test_footprint import omnidirectional
 
+# the hard ground of the footprint section, defaults filled (nps.app.config.fill_defaults)
+GROUND = {"model": "hard", "flow_resistivity_kPa_s_m2": 200.0, "coherent": True}
+
 MISSION = {
     "name": "mini",
     "segments": [
@@ -51,7 +54,7 @@ def test_footprint_stage(tmp_path, hemispheres):
     out.update(areas_csv=str(tmp_path / "areas.csv"), sel_figure=str(tmp_path / "sel.png"), lamax_figure=str(tmp_path / "lamax.png"))
     params = {"mission": MISSION, "aircraft": "heli",
               "grid": {"x_range_m": [-500.0, 3000.0], "y_range_m": [-1000.0, 1000.0], "spacing_m": 250.0, "height_m": 1.2},
-              "microphones": {"m": [500.0, 0.0, 1.2]}, "ground": {"model": "hard"},
+              "microphones": {"m": [500.0, 0.0, 1.2]}, "ground": GROUND, "ground_as_written": {"model": "hard"},
               "atmosphere": {"isa_delta_K": 0.0, "relative_humidity_pct": 70.0}, "absorption": True}
     inputs = {"hemisphere_seg1": hemispheres["seg1"], "hemisphere_seg2": hemispheres["seg2"]}
     report = stage_function("footprint")(inputs, out, params)
@@ -86,7 +89,8 @@ def test_certification_stage_and_command(tmp_path, hemispheres):
                "pnlt_figure": str(out_dir / "p.png"), "table_figure": str(out_dir / "t.png")}
     params = {"mission": MISSION, "aircraft": "heli", "max_mass_kg": 5000.0,
               "segments": {"takeoff": "seg1", "overflight": "seg2", "approach": "seg3"}, "vne_mps": None,
-              "approach_min_speed_mps": None, "ground": {"model": "hard"}, "absorption": True}
+              "approach_min_speed_mps": None, "ground": GROUND, "ground_as_written": {"model": "hard"},
+              "absorption": True}
     stage_function("certification")(inputs, outputs, params)
     summary = read_table(outputs["summary"])
     assert list(summary["procedure"]) == ["takeoff", "overflight", "approach"]

@@ -1,4 +1,4 @@
-"""Frames: the conventions of docs/conventions.md on cases with known answers."""
+"""Frames: the conventions of docs/reference/conventions.md on cases with known answers."""
 
 import numpy as np
 

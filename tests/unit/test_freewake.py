@@ -1,5 +1,7 @@
 """Free-vortex wake (nps.wake.free): initial guess, guards, errors, frames."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -10,6 +12,7 @@ from nps.wake import bvi
 from nps.wake import free as freewake
 
 from nps.wake import prescribed as wake
+from nps.wake import vortex
 from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 R, OMEGA = 2.0, 109.12
@@ -60,11 +63,13 @@ def test_non_convergence_is_a_clear_error(rotor):
 
 
 def test_marginal_case_stops_with_an_error(rotor):
-    """A forced marginal case — the measured thin core (0.14 c) without the discretisation floor,
-    no core growth, no under-relaxation — does not settle on the 10° grid: the solver raises
-    FreeWakeError instead of returning a wandering wake."""
+    """A forced marginal case — the measured thin core (0.14 c) with the discretisation floor at
+    that core, no core growth, no under-relaxation — does not settle on the 10° grid: the solver
+    raises FreeWakeError instead of returning a wandering wake."""
     _, placement = rotor
-    marginal = freewake.FreeWakeModel(core_floor_chords=0.0, core_growth=False, relaxation=1.0, max_iterations=40)
+    thin = replace(freewake.FREE_WAKE_VORTEX, core_growth=False)
+    marginal = freewake.FreeWakeModel(vortex=thin, core_floor_chords=thin.core_radius_chords, relaxation=1.0,
+                                      max_iterations=40)
     with pytest.raises(freewake.FreeWakeError, match="rotor 'demo'"):
         freewake.relax([placement], BEDDOES, marginal)
 
@@ -122,6 +127,42 @@ def test_model_from_config():
     assert freewake.FreeWakeModel.from_config({"steps_per_rev": 72}).steps_per_rev == 72
     with pytest.raises(ValueError, match="unknown field"):
         freewake.FreeWakeModel.from_config({"steps": 72})
+    model = freewake.FreeWakeModel.from_config({"core_radius_chords": 0.2, "core_growth": False, "vatistas_n": 1.5,
+                                                "core_floor_chords": 0.5})
+    assert model.vortex == replace(freewake.FREE_WAKE_VORTEX, core_radius_chords=0.2, core_growth=False, vatistas_n=1.5)
+    assert model.kinematics_vortex.core_radius_chords == 0.5
+    with pytest.raises(ValueError, match="vortex"):
+        freewake.FreeWakeModel(vortex=replace(freewake.FREE_WAKE_VORTEX, vortex_structure="betz"))
+
+
+def _bounds(prop: dict) -> list[tuple[float, bool]]:
+    """(value, valid) on and just beside each bound of one numeric schema property."""
+    step = 1 if prop["type"] == "integer" else 1e-3
+    pairs = []
+    for key, sense, on_is_valid in (("minimum", -1, True), ("exclusiveMinimum", 1, False), ("maximum", 1, True),
+                                    ("exclusiveMaximum", -1, False)):
+        if key in prop:
+            beside = prop[key] + sense * step  # outside an inclusive bound, inside an exclusive one
+            pairs += [(prop[key], on_is_valid), (beside, not on_is_valid)]
+    return pairs
+
+
+def test_model_checks_the_schema_bounds():
+    """FreeWakeModel refuses exactly what the config schema (``wake.free``, the one source of
+    the bounds) refuses: every numeric bound, on and just beside it."""
+    from nps.app.config import load_schema
+
+    free = load_schema("config")["properties"]["wake"]["properties"]["free"]["properties"]
+    checked = 0
+    for key, prop in free.items():
+        for value, valid in _bounds(prop) if prop["type"] in ("number", "integer") else ():
+            checked += 1
+            if valid:
+                freewake.FreeWakeModel.from_config({key: value})
+            else:
+                with pytest.raises(ValueError, match=key):
+                    freewake.FreeWakeModel.from_config({key: value})
+    assert checked >= 20
 
 
 def test_ring_velocity_is_the_exact_ring_field():
@@ -133,7 +174,7 @@ def test_ring_velocity_is_the_exact_ring_field():
     theta = np.linspace(0.0, 2.0 * np.pi, 2001)
     polygon = np.stack([np.cos(theta), np.sin(theta), np.zeros_like(theta)], axis=1)
     point = np.array([[0.3, 0.2, 0.5]])
-    exact = wake.segment_induced_velocity(point, polygon[:-1], polygon[1:], np.ones(2000), 0.0)[0]
+    exact = vortex.segment_induced_velocity(point, polygon[:-1], polygon[1:], np.ones(2000), 0.0)[0]
     ring = freewake._ring_velocity(point, np.zeros((1, 3)), axis, 1.0, np.array([1.0]), 0.0)[0]
     assert ring == pytest.approx(exact, rel=1e-5)
 

@@ -13,7 +13,7 @@ from nps.app.config import load_aircraft
 from nps.rotor.geometry import OperatingPoint, RotorGeometry
 from nps.rotor.trim import FlightCondition, trim_aircraft
 
-# peak RSS above the imported interpreter (MB), helicopter seg3 main rotor (docs/models/validity.md)
+# peak RSS above the imported interpreter (MB), helicopter seg3 main rotor (docs/reference/validity.md)
 MEASURED_LOADS = [((90, 20), 11.2), ((360, 50), 21.2), ((720, 100), 40.3), ((1440, 100), 103.5), ((1440, 200), 135.5),
                   ((2880, 200), 262.2)]
 MEASURED_WAKE = [((360, 50, 4.0), 101.5), ((360, 50, 8.0), 150.8), ((720, 50, 4.0), 154.6), ((720, 100, 4.0), 133.3)]

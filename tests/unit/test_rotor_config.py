@@ -1,5 +1,5 @@
 """Blade and airfoil tables and control modes in an aircraft file: a valid propeller with a blade
-CSV, the NACA 0012 deck and rpm control, and each bad input stopping with file and field."""
+CSV, the NACA 0012 deck (SAND80-2114) and rpm control, and each bad input stopping with file and field."""
 
 import math
 import shutil
@@ -55,7 +55,7 @@ def test_propeller_with_tables_and_rpm_control(tree):
     rpm control meets the thrust at the configured pitch."""
     rotor = load_aircraft(_write(tree, PROP))["rotors"][0]
     g = RotorGeometry.from_config(rotor)
-    assert g.blade is not None and g.airfoil.full_range and math.isclose(g.airfoil.lift_slope_per_rad, 6.0447, rel_tol=1e-4)
+    assert g.blade is not None and g.airfoil.full_range and math.isclose(g.airfoil.lift_slope_per_rad, 0.22 / math.radians(2.0), rel_tol=1e-12)
     assert np.allclose(g.chord_at(np.array([0.015, 0.12])), [0.024, 0.0108])
     assert g.twist_at(0.09) == pytest.approx(0.0, abs=1e-15)  # θ0 is the pitch at 75 % R
     op = OperatingPoint(700.0, 0.0, 0.0, 0.0, 1.225, 340.0, 4.0)
@@ -75,7 +75,7 @@ def test_malformed_airfoil_table_names_both_files_and_the_row(tree):
     lines[3] = lines[3][:7] + "  oops " + lines[3][14:]
     deck.write_text("\n".join(lines) + "\n")
     message = _error(tree, PROP)
-    assert "drone.yaml: rotors[0]:" in message and "naca0012.c81: line 4: CL row 1: columns 8-14" in message
+    assert "drone.yaml: rotors[0]:" in message and "naca0012.c81: line 4: CL row 2: columns 8-14" in message
 
 
 def test_alpha_range_not_covering_the_operating_point_names_file_and_field(tree):

@@ -193,7 +193,7 @@ def test_campaign_output_options_and_their_errors(repo_root):
 
     config = read_yaml(repo_root / "config/config.yaml")
     bare = load_campaign({k: v for k, v in config.items() if k != "outputs"}, root=repo_root)
-    assert (bare.output_option("tone_harmonics"), bare.output_option("spectra_loudest")) == (10, 3)
+    assert (bare.config["outputs"]["tone_harmonics"], bare.config["outputs"]["spectra_loudest"]) == (10, 3)
     assert bare.tone_observer_sets("seg5") == ["hemisphere", "hsi"]
     only = load_campaign(dict(config, outputs={"tone_observer_sets": ["hsi"]}), root=repo_root)
     assert only.tone_observer_sets("seg5") == ["hsi"] and only.tone_observer_sets("seg1") == []

@@ -136,7 +136,7 @@ def test_fixed_observer_passed_by_the_rotor_is_caught():
 
 
 def test_pegg_peak_frequency_range():
-    assert v.check_pegg_peak_frequency(50.41e3, 213.4, "r") is None  # 336 Hz (docs/models/broadband_metrics.md)
+    assert v.check_pegg_peak_frequency(50.41e3, 213.4, "r") is None  # 336 Hz (docs/reference/broadband_metrics.md)
     low = v.check_pegg_peak_frequency(1e9, 100.0, "r")  # eq. 3.1 gives f_p < 0
     assert math.isnan(low.value) and "not positive" in low.limit
     assert v.check_pegg_peak_frequency(1.0, 8000.0, "r") is None  # 20.5 kHz: in the 20 kHz band (edge 22.4 kHz)

@@ -1,4 +1,5 @@
-"""Unit tests of nps.wake.prescribed: Biot–Savart segment kernel, Beddoes geometry, frames."""
+"""Unit tests of nps.wake.vortex and nps.wake.prescribed: Biot–Savart segment kernel, core growth, Betz
+structure, Beddoes geometry, frames."""
 
 import math
 from dataclasses import replace
@@ -9,7 +10,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from nps.wake import prescribed as wake
+from nps.wake import vortex
+from nps.wake.vortex import VortexModel
 from nps.core.frames import rot_x, rot_y, rot_z
+
+POINT = VortexModel(vortex_structure="point")
 
 
 def _analytic_segment(x, h, a, b, gamma, rc, n=2.0):
@@ -40,7 +45,7 @@ def test_segment_matches_analytic_finite_segment(x, h, a, length, angles):
     rot = rot_z(angles[0]) @ rot_y(angles[1]) @ rot_x(angles[2])
     point = rot @ np.array([x, h, 0.0])
     start, end = rot @ np.array([a, 0, 0.0]), rot @ np.array([b, 0, 0.0])
-    v = wake.segment_induced_velocity(point[None], start[None], end[None], gamma, rc)[0]
+    v = vortex.segment_induced_velocity(point[None], start[None], end[None], gamma, rc)[0]
     expected = _analytic_segment(x, h, a, b, gamma, rc) * (rot @ np.array([0.0, 0.0, 1.0]))
     # the analytic expression includes the (here ~1e-8) Vatistas factor as well
     assert np.allclose(v, expected, rtol=0, atol=1e-9 * gamma / (4 * math.pi * h))
@@ -52,7 +57,7 @@ def test_segment_matches_analytic_finite_segment(x, h, a, length, angles):
 def test_long_segment_gives_infinite_line_law():
     """A segment 2×10⁵ h long gives Γ/(2πh) far from the core (rel. error < 1e-8)."""
     gamma, h, rc = 12.0, 0.5, 0.005
-    v = wake.segment_induced_velocity([[0.3, h, 0.0]], [[-1e5, 0, 0]], [[1e5, 0, 0]], gamma, rc)[0]
+    v = vortex.segment_induced_velocity([[0.3, h, 0.0]], [[-1e5, 0, 0]], [[1e5, 0, 0]], gamma, rc)[0]
     assert v[0] == 0.0 and v[1] == 0.0
     assert v[2] == pytest.approx(gamma / (2 * math.pi * h), rel=1e-8)
 
@@ -64,7 +69,7 @@ def test_core_is_finite_and_continuous():
     gamma, rc = 5.0, 0.06
     h = np.linspace(-3 * rc, 3 * rc, 6001)
     pts = np.column_stack([np.zeros_like(h), h, np.zeros_like(h)])
-    v = wake.segment_induced_velocity(pts, [[-1e4, 0, 0]], [[1e4, 0, 0]], gamma, rc)[:, 2]
+    v = vortex.segment_induced_velocity(pts, [[-1e4, 0, 0]], [[1e4, 0, 0]], gamma, rc)[:, 2]
     assert np.isfinite(v).all()
     profile = gamma / (2 * math.pi) * h / np.sqrt(rc**4 + h**4)
     assert np.allclose(v, profile, rtol=1e-7, atol=1e-12)
@@ -73,12 +78,12 @@ def test_core_is_finite_and_continuous():
     slope_max = gamma / (2 * math.pi * rc**2)
     assert np.abs(np.diff(v)).max() <= slope_max * (h[1] - h[0]) * 1.0001
     # general exponent: n = 1 is the Scully core, Γ/(2π) h/(r_c² + h²)
-    v1 = wake.segment_induced_velocity(pts, [[-1e4, 0, 0]], [[1e4, 0, 0]], gamma, rc, vatistas_n=1.0)[:, 2]
+    v1 = vortex.segment_induced_velocity(pts, [[-1e4, 0, 0]], [[1e4, 0, 0]], gamma, rc, vatistas_n=1.0)[:, 2]
     assert np.allclose(v1, gamma / (2 * math.pi) * h / (rc**2 + h**2), rtol=1e-7, atol=1e-12)
 
 
 def test_point_on_segment_and_at_nodes_gives_zero():
-    v = wake.segment_induced_velocity([[0, 0, 0], [1, 0, 0], [0.5, 0, 0]], [[0, 0, 0]], [[1, 0, 0]], 1.0, 0.1)
+    v = vortex.segment_induced_velocity([[0, 0, 0], [1, 0, 0], [0.5, 0, 0]], [[0, 0, 0]], [[1, 0, 0]], 1.0, 0.1)
     assert np.all(v == 0.0)
 
 
@@ -145,7 +150,7 @@ def test_hover_induced_velocity_is_axisymmetric_downwash():
     s = _state(mu_x=0.0, mu_z=0.0, beta_table_rad=np.zeros(72))
     psi = 2 * np.pi * np.arange(36) / 36
     r = np.linspace(0.5, 1.8, 14)
-    v = wake.disk_induced_velocity(s, wake.WakeModel(revolutions=4, steps_per_rev=180, vortex_structure="point"), psi, r, 0.0)
+    v = wake.disk_induced_velocity(s, wake.WakeModel(revolutions=4, steps_per_rev=180, vortex=POINT), psi, r, 0.0)
     assert np.all(v[:, :-1, 2] < 0.0)
     spread = np.ptp(v[..., 2], axis=0)
     assert np.all(spread < 1e-6 * np.abs(v[..., 2]).mean())
@@ -155,7 +160,7 @@ def test_disk_kernel_equals_generic_segment_kernel():
     """The disk kernel (node-vector reuse, per-row snapshot) equals the generic segment
     kernel applied to the snapshot's segments (rel. 1e-12)."""
     s = _state(gamma_table_m2_s=1.0 + np.sin(2 * np.pi * np.arange(72) / 72) ** 2)
-    model = wake.WakeModel(revolutions=1.5, steps_per_rev=72, core_growth=True, vortex_structure="point")
+    model = wake.WakeModel(revolutions=1.5, steps_per_rev=72, vortex=replace(POINT, core_growth=True))
     psi = np.array([0.0, 1.0, 2.5])
     r = np.array([0.8, 1.5, 1.95])
     v = wake.disk_induced_velocity(s, model, psi, r, 0.04)
@@ -166,15 +171,15 @@ def test_disk_kernel_equals_generic_segment_kernel():
         ends = snap.nodes_m[:, 1:].reshape(-1, 3)
         g = 0.5 * (snap.strength_m2_s[:, :-1] + snap.strength_m2_s[:, 1:]).ravel()
         rc = 0.5 * (snap.core_radius_m[:, :-1] + snap.core_radius_m[:, 1:]).ravel()
-        ref = wake.segment_induced_velocity(pts[i], starts, ends, g, rc)
+        ref = vortex.segment_induced_velocity(pts[i], starts, ends, g, rc)
         assert np.allclose(v[i], ref, rtol=1e-12, atol=1e-12)
 
 
 def test_core_growth_law():
     """Squire growth: r_c² = r_c0² + 4αν(1 + a₁Γ/ν)φ/Ω (rel. 1e-12); constant when off."""
     s = _state()
-    on = wake.wake_snapshot(s, wake.WakeModel(revolutions=2, core_growth=True), 0.0)
-    off = wake.wake_snapshot(s, wake.WakeModel(revolutions=2, core_growth=False), 0.0)
+    on = wake.wake_snapshot(s, wake.WakeModel(revolutions=2, vortex=VortexModel(core_growth=True)), 0.0)
+    off = wake.wake_snapshot(s, wake.WakeModel(revolutions=2, vortex=VortexModel(core_growth=False)), 0.0)
     rc0 = 0.5 * 0.121
     phi = on.age_rad
     expected = np.sqrt(rc0**2 + 4 * 1.25643 * 1.5e-5 * (1 + 6.5e-5 * 2.5 / 1.5e-5) * phi / 109.12)
@@ -192,7 +197,7 @@ def test_clockwise_rotor_is_the_mirror_of_the_counterclockwise_rotor():
     the same ΔU_T and the same vertical velocity as the ccw disk kernel (rel. 1e-10)."""
     ccw = _state(mu_y=-0.03, rotation_sign=1)
     cw = _state(mu_y=0.03, rotation_sign=-1)
-    model = wake.WakeModel(revolutions=1.0, steps_per_rev=72, vortex_structure="point")
+    model = wake.WakeModel(revolutions=1.0, steps_per_rev=72, vortex=POINT)
     psi = np.array([0.4, 2.0])
     r = np.array([1.0, 1.9])
     v_ccw = wake.disk_induced_velocity(ccw, model, psi, r, 0.0)
@@ -202,7 +207,7 @@ def test_clockwise_rotor_is_the_mirror_of_the_counterclockwise_rotor():
         starts, ends = nodes_h[:, :-1].reshape(-1, 3), nodes_h[:, 1:].reshape(-1, 3)
         g = -0.5 * (snap.strength_m2_s[:, :-1] + snap.strength_m2_s[:, 1:]).ravel()
         pts = r[:, None] * np.array([np.cos(p), -np.sin(p), 0.0])
-        v_h = wake.segment_induced_velocity(pts, starts, ends, g, 0.5 * 0.121)
+        v_h = vortex.segment_induced_velocity(pts, starts, ends, g, 0.5 * 0.121)
         e_t = np.array([-np.sin(p), -np.cos(p), 0.0])
         e_t_ccw = np.array([-np.sin(p), np.cos(p), 0.0])
         assert np.allclose(v_h @ e_t, v_ccw[i] @ e_t_ccw, rtol=1e-10, atol=1e-12)
@@ -218,7 +223,7 @@ def test_bad_inputs_are_rejected():
     with pytest.raises(ValueError, match="d_contraction"):
         wake.WakeModel(d_contraction=1.5)
     with pytest.raises(ValueError, match="shapes"):
-        wake.segment_induced_velocity(np.zeros((2, 3)), np.zeros((2, 3)), np.zeros((3, 3)), 1.0, 0.1)
+        vortex.segment_induced_velocity(np.zeros((2, 3)), np.zeros((2, 3)), np.zeros((3, 3)), 1.0, 0.1)
 
 
 def test_betz_roll_up_of_elliptic_loading_is_analytic():
@@ -228,7 +233,7 @@ def test_betz_roll_up_of_elliptic_loading_is_analytic():
     at every ρ."""
     radius, gamma0 = 2.0, 3.0
     r = np.linspace(0.0, radius, 2001)[:-1]
-    rho, enclosed = wake.betz_enclosed_circulation(r, gamma0 * np.sqrt(1.0 - (r / radius) ** 2), radius)
+    rho, enclosed = vortex.betz_enclosed_circulation(r, gamma0 * np.sqrt(1.0 - (r / radius) ** 2), radius)
     theta = np.linspace(0.05, np.pi / 2, 200)
     rho_exact = radius * (theta / 2 - np.sin(2 * theta) / 4) / np.sin(theta)
     assert np.allclose(np.interp(rho_exact, rho, enclosed), gamma0 * np.sin(theta), atol=5e-3 * gamma0)
@@ -246,7 +251,7 @@ def _linear_sheet_state(**kw):
     weight = 0.5 * (1.0 + np.sin(2 * np.pi * np.arange(360) / 360))[:, None]
     gamma = weight * wide + (1.0 - weight) * narrow
     return _state(gamma_table_m2_s=gamma.max(axis=1), beta_table_rad=np.full(360, 0.04),
-                  vortex_profile=wake.vortex_profile_table(r, gamma, radius), **kw)
+                  vortex_profile=vortex.vortex_profile_table(r, gamma, radius), **kw)
 
 
 def test_betz_structure_equals_its_vortex_layers():
@@ -258,19 +263,19 @@ def test_betz_structure_equals_its_vortex_layers():
     tip-loaded one (ψ = 270°) concentrated (> 95 %)."""
     s = _linear_sheet_state(mu_x=0.15, mu_z=-0.011)
     model = wake.WakeModel(revolutions=1.5, steps_per_rev=72)
-    point = wake.WakeModel(revolutions=1.5, steps_per_rev=72, vortex_structure="point")
+    point = wake.WakeModel(revolutions=1.5, steps_per_rev=72, vortex=POINT)
     psi = 2 * np.pi * np.arange(72) / 72
     r = np.linspace(1.0, 1.95, 8)
     v = wake.disk_induced_velocity(s, model, psi, r, 0.04)
     v_point = wake.disk_induced_velocity(s, point, psi, r, 0.04)
-    rho = wake.profile_radii(wake.PROFILE_SCALE_RADII * s.radius_m)
+    rho = vortex.profile_radii(vortex.PROFILE_SCALE_RADII * s.radius_m)
     edges = 0.002 * 1.2 ** np.arange(40)
     enclosed = np.array([np.interp(edges, rho[:-1], row[:-1], right=1.0) for row in s.vortex_profile])
     layers = np.diff(np.concatenate([np.zeros((360, 1)), enclosed], axis=1), axis=1) * s.gamma_table_m2_s[:, None]
     layer_radius = 0.5 * (np.concatenate([[0.0], edges[:-1]]) + edges)
     v_layers = sum(
         wake.disk_induced_velocity(replace(s, gamma_table_m2_s=layers[:, m]),
-                                   replace(point, core_radius_chords=max(layer_radius[m], 0.5 * s.chord_m) / s.chord_m),
+                                   replace(point, vortex=replace(POINT, core_radius_chords=max(layer_radius[m], 0.5 * s.chord_m) / s.chord_m)),
                                    psi, r, 0.04)
         for m in range(edges.size))
     peak = np.abs(v_point).max()
@@ -287,16 +292,16 @@ def test_betz_structure_needs_the_profile():
     with pytest.raises(ValueError, match="vortex_profile"):
         _state(vortex_profile=np.ones((72, 5)))
     with pytest.raises(ValueError, match="vortex_structure"):
-        wake.WakeModel(vortex_structure="lamb")
+        VortexModel(vortex_structure="lamb")
 
 
 def test_structure_factor_polynomial_fits_its_table():
     """The kernel's polynomial T(u) reproduces the structure-factor table within 1e-3 for a wide
     sheet, a tip-loaded one and every blend (T between 0 and 1, T = 1 at u = 1)."""
     s = _linear_sheet_state()
-    scale = wake.PROFILE_SCALE_RADII * s.radius_m
-    table = wake.structure_factor_table(s.vortex_profile, scale, 0.5 * s.chord_m)
-    coefficients, s2 = wake.vortex_profiles(s, wake.WakeModel())
+    scale = vortex.PROFILE_SCALE_RADII * s.radius_m
+    table = vortex.structure_factor_table(s.vortex_profile, scale, 0.5 * s.chord_m)
+    coefficients, s2 = VortexModel().structure_coefficients(s.vortex_profile, s.radius_m, s.chord_m)
     x = np.linspace(-1.0, 1.0, table.shape[1])
     fitted = np.array([np.polynomial.polynomial.polyval(x, c) for c in coefficients])
     assert s2 == pytest.approx(scale**2)

@@ -54,7 +54,7 @@ def _sources(data_dir, nn, thickness):
                     else:
                         frame["volume_m3"] = np.zeros_like(tau)
                 else:
-                    # force on the fluid ±ρ0 (A/D)(v·e_c) v dr (nps.noise.sources, docs/models/acoustics.md)
+                    # force on the fluid ±ρ0 (A/D)(v·e_c) v dr (nps.noise.sources, docs/reference/acoustics.md)
                     strength = sign * RHO0 * area[e] / ((0.87 - 0.13) * chord[e]) * dr[e] * (-vel[0] * np.cos(phi) - vel[1] * np.sin(phi))
                     frame.update(fx_N=strength * vel[0], fy_N=strength * vel[1], fz_N=strength * vel[2], volume_m3=np.zeros_like(tau))
                 frames.append(pd.DataFrame(frame))
@@ -91,7 +91,7 @@ def _check_dual_compact(data_dir, cases):
     """Dual compact vs ANOPP2's compact monopole on ``cases``.
 
     The dual-compact force law has the compact monopole as its compact limit (exact for a section
-    in steady rotation; docs/models/acoustics.md). Two layouts:
+    in steady rotation; docs/reference/acoustics.md). Two layouts:
     * pair centred on the element (where ANOPP2's monopole sits): max |difference| < 1 % of the
       ANOPP2 peak-to-peak, 2.5 % at 200 rpm (there the axial flight speed is 0.2 of the tip speed and
       the O(V/U) term of a pair separated across the helical path shows). Measured ≤ 0.98 %, 2.4 %.

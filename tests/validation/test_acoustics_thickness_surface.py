@@ -143,7 +143,7 @@ def test_compact_limit_full_surface_monopole_dual(elevation_deg):
 
     Checks the reference surface integral against the compact monopole (ANOPP2-validated) where the
     blade is compact, and that the dual-compact force law has the monopole as its compact limit
-    (the thesis' ±ρ0c²·t·dr lines give 12.7× the full-surface peak here, see docs/models/acoustics.md).
+    (the thesis' ±ρ0c²·t·dr lines give 12.7× the full-surface peak here, see docs/reference/acoustics.md).
     """
     for kind in ("compact_monopole", "dual_compact"):
         peak, width = _compare(0.3, elevation_deg, kind)

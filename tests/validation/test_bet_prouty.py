@@ -1,7 +1,7 @@
 """Prouty helicopter BET case (thesis Table 4.1 / Fig. 4.5, after Yaakub et al.): controls
 imposed, no trim. Data: tests/data/prouty/case.csv.
 
-Reading of the table (docs/models/loads.md): Prouty's cyclic convention θ = θ0 − A1 cos ψ
+Reading of the table (docs/reference/loads.md): Prouty's cyclic convention θ = θ0 − A1 cos ψ
 − B1 sin ψ, so θ1c = −A1 = +2.3°, θ1s = −B1 = −4.9°; no twist (none listed); the controls
 are taken relative to the tip-path plane (β ≡ 0; the table gives no flap data); shaft normal
 to the flight path (μ_z = 0); linear inflow from the BET's own C_T.

@@ -3,7 +3,7 @@
 NPS's lifting-line response to a convected (parallel) gust of reduced frequency k = ω b / U
 (b the half-chord) at Mach number M is the quasi-steady Prandtl–Glauert lift (the BET's c_l
 carries 1/β) times the gust filter |S(k/β²)| of :func:`nps.wake.bvi.gust_transfer` (β² = 1 − M²;
-docs/models/wake_bvi.md, "Unsteady section response"), i.e. a lift per span
+docs/validation/bvi_gust_response.md, "Unsteady section response"), i.e. a lift per span
 L = 2π ρ U b w |S(k/β²)| / β. References, with σ = M k / β²:
 
 - low frequency (σ < π/4): Amiet, "Compressibility effects in unsteady thin-airfoil theory",
@@ -22,7 +22,7 @@ M ≈ 0.63 on the advancing and ≈ 0.47 on the retreating side. Measured at the
 NPS / Amiet-HF = 0.94–1.09 at M = 0.63 and 0.90–1.04 at M = 0.47 for k = 0.5–2 (below k = 1.5:
 ≤ 0.98 on the advancing side, i.e. NPS is not the stronger). The β² time scaling is what makes the
 agreement: without it (|S(k)|/β) NPS is 20 % above Amiet at M = 0.63, k = 1. A compressible response much below NPS's is therefore not
-the cause of HART-II's ×2 advancing-side BVI amplitude (docs/models/wake_bvi.md, HART-II).
+the cause of HART-II's ×2 advancing-side BVI amplitude (docs/validation/bvi_gust_response.md, HART-II).
 """
 
 import numpy as np

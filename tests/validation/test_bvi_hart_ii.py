@@ -5,7 +5,7 @@ tests/validation/hart_ii_case.py. Model defaults (A, B, C, D = 0.5, 1, 1.1, 0.85
 Sears response; 0/1-rev harmonics removed). Figures are written to $NPS_FIGURES_DIR when set
 (the copies in docs/figures/ were made that way).
 
-Measured at the time of writing (docs/models/wake_bvi.md), Betz vortex structure (the default)
+Measured at the time of writing (docs/validation/hart_ii_airloads.md), Betz vortex structure (the default)
 and Sears response with the local in-plane speed and compressible magnitude; the thesis' point
 vortex in brackets:
 - advancing window 30°–80°: high-passed (≥ 10/rev) peak-to-peak 0.0222 vs measured 0.0217
@@ -27,6 +27,7 @@ import pytest
 import hart_ii_case as h
 from nps.wake import bvi
 from nps.wake import prescribed as wake
+from nps.wake.vortex import VortexModel
 
 
 @pytest.fixture(scope="module")
@@ -73,7 +74,7 @@ def test_point_vortex_doubles_the_advancing_bvi():
     vortex (same wake, same response) it is ×2.09 the measured one, the retreating ×1.09 — the
     advancing-side vortices roll up from a sheet half a radius wide (diffuse), the retreating
     ones from a tip-loaded sheet (concentrated)."""
-    point = h.run(model=wake.WakeModel(steps_per_rev=360, vortex_structure="point"))
+    point = h.run(model=wake.WakeModel(steps_per_rev=360, vortex=VortexModel(vortex_structure="point")))
     (_, _, _, _, adv, adv_meas), (_, _, _, _, ret, ret_meas) = h.window_comparison(point.psi_deg, point.cn_bvi)
     assert adv > 1.8 * adv_meas and abs(ret / ret_meas - 1.0) < 0.15, (adv / adv_meas, ret / ret_meas)
 
@@ -98,7 +99,7 @@ def test_mean_loading_matches_measured_level(hart):
 def test_tip_vortex_positions_against_piv(hart):
     """Every PIV vortex has a predicted vortex within 0.3 m (2.5 c) in its cut plane; the mean
     miss distance is below 0.2 m (1.65 c). (Beddoes' prescribed wake places the vortices
-    ≈ 0.1 m too close to the disk here; see docs/models/wake_bvi.md.)"""
+    ≈ 0.1 m too close to the disk here; see docs/validation/hart_ii_piv.md.)"""
     records = h.piv_miss_distances(hart.state, wake.WakeModel())
     miss = np.array([r[-1] for r in records])
     assert len(records) == 46

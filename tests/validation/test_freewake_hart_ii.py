@@ -3,7 +3,7 @@ and the PIV tip-vortex positions (tests/data/hart_ii). Case: tests/validation/ha
 with the measured blade motion (elastic twist and flap with the 2.5° precone, ``CASES["BL"]``),
 360 × 50 disk, 1° load segments, 10° relaxation grid (``FreeWakeModel`` defaults).
 
-Measured at the time of writing (docs/models/wake_bvi.md, "Validation"), Betz vortex structure
+Measured at the time of writing (docs/validation/hart_ii_airloads.md, "Validation"), Betz vortex structure
 (the default; point vortex in brackets):
 - advancing window 30°–80°: high-passed peak-to-peak 0.0201 vs measured 0.0217 (×0.92 [×2.02]),
   best-correlation lag +9.1° (ρ = 0.83) [+8.9°];
@@ -91,7 +91,7 @@ def test_piv_vortex_positions(piv):
     assert _mean_dz(piv, "retreating") > _mean_dz(rigid, "retreating") + 0.01
 
 
-@pytest.mark.xfail(strict=True, reason="issue 12 target not met: mean miss 0.142 m (docs/models/wake_bvi.md, "
+@pytest.mark.xfail(strict=True, reason="issue 12 target not met: mean miss 0.142 m (docs/validation/hart_ii_piv.md, "
                    "HART-II: front-half upwash and faster convection that no rotor-wake element gives)")
 def test_piv_mean_miss_within_the_issue_target(piv):
     """Issue 12: PIV tip-vortex mean miss distance < 0.05 m (measured 0.142 m)."""
@@ -103,7 +103,7 @@ def test_front_half_convection_speed(piv):
     of the free stream (``h.convection_spacings``, 13 pairs): measured 1.04–1.21 (mean 1.12), the wake
     speeding up over the front half; NPS's free wake convects at the free-stream speed (mean
     within 5 % of 1; measured 0.96–1.07). The gap is the streamwise half of the PIV miss
-    (docs/models/wake_bvi.md, "Streamwise convection")."""
+    (docs/validation/hart_ii_piv.md, "Streamwise convection")."""
     measured, predicted = h.convection_spacings(piv)
     assert measured.size >= 12
     assert measured.mean() >= 1.08

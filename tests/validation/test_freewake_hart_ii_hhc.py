@@ -3,7 +3,7 @@ each with its measured elastic twist, measured flap (2.5° precone) and trim tar
 (hart_ii_case.CASES), free wake with the Betz vortex structure (defaults), against the measured
 M²C_n at r/R = 0.87 (tests/data/hart_ii).
 
-High-passed peak-to-peak, measured at the time of writing (docs/models/wake_bvi.md,
+High-passed peak-to-peak, measured at the time of writing (docs/validation/hart_ii_airloads.md,
 "Validation"; advancing ratio to BL in brackets):
 
 | case | window | measured | measured flap | rigid flap | point vortex, measured flap |

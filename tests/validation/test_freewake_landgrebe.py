@@ -13,7 +13,7 @@ revolutions and the semi-infinite continuation (continuation_radii = 50, off by 
 relaxed to a node change < 0.1 % R (the default 1 % stops at 5 iterations, with the
 pre-passage rise 0.005 R short of its converged value).
 
-Measured (docs/models/wake_bvi.md, "Landgrebe hover"), before → after the far-wake continuation:
+Measured (docs/validation/landgrebe_hover.md, "Landgrebe hover"), before → after the far-wake continuation:
 - contraction at ages 2–3 revolutions: 0.726–0.735 R → 0.722–0.737 R against 0.781–0.787
   (−7.2 … −6.5 % → −7.6 … −6.2 %): within the issue's 10 %;
 - far descent rate (ages 1–2 revolutions): k2 = −0.0487 → −0.0511 per rad (−25 % → −21 %);
@@ -98,7 +98,7 @@ def test_radial_contraction(hover):
 
 @pytest.mark.xfail(strict=True, raises=AssertionError,
                    reason="k1 not reproduced: the vortex rises 0.025 R before the first blade passage "
-                          "(docs/models/wake_bvi.md, Landgrebe hover)")
+                          "(docs/validation/landgrebe_hover.md, Landgrebe hover)")
 def test_descent_before_the_first_blade_passage(hover):
     """Issue target: k1 = z(2π/B)/(2π/B) within 10 % of Landgrebe's."""
     phi, _, z, _ = hover
@@ -108,7 +108,7 @@ def test_descent_before_the_first_blade_passage(hover):
 
 @pytest.mark.xfail(strict=True, raises=AssertionError,
                    reason="k2 21 % slow: above the tip-vortex cylinder's self-induced descent "
-                          "(docs/models/wake_bvi.md, Landgrebe hover)")
+                          "(docs/validation/landgrebe_hover.md, Landgrebe hover)")
 def test_far_descent_rate(hover):
     """Issue target: k2 (least squares over ages 1–2 revolutions) within 10 % of Landgrebe's."""
     phi, _, z, _ = hover

@@ -86,6 +86,6 @@ def test_sheared_signal_fit_matches_lax_oleinik(k, n_expected):
     dt = np.abs((t_fit - ref[:, 0] + 0.5) % 1.0 - 0.5)
     assert dt.max() < 0.01
     assert np.max(np.abs(jump_fit - jump_ref) / np.abs(jump_ref)) < 0.01
-    # tighter figures actually reached (documented in docs/models/hsi.md)
+    # tighter figures actually reached (documented in docs/reference/hsi.md)
     assert dt.max() < 1e-4
     assert np.max(np.abs(jump_fit - jump_ref) / np.abs(jump_ref)) < 1e-3

@@ -1,4 +1,4 @@
-"""Rotor–rotor interaction through the free wake (issue 12; docs/models/wake_bvi.md).
+"""Rotor–rotor interaction through the free wake (issue 12; docs/validation/rotor_interaction.md).
 
 Synthetic aircraft of identical rotors (tests/validation/multirotor_case.py), 72 × 16 disks,
 10° relaxation grid, 5° load segments. Measured at the time of writing (docs):

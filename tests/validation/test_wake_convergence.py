@@ -1,4 +1,4 @@
-"""Convergence of the BVI increment under refinement (issue item 5; docs/models/wake_bvi.md).
+"""Convergence of the BVI increment under refinement (issue item 5; docs/validation/wake_convergence.md).
 
 Case: thesis Table 5.2 rotor (bundled helicopter main rotor, μ_x = 0.23, 6° descent,
 C_T = 0.0095) trimmed by nps.rotor.bet on 360 × 50 and 720 × 50 disks; BVI increments with the

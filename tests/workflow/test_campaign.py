@@ -16,7 +16,7 @@ import pyarrow.parquet as pq
 import pytest
 import yaml
 
-from campaigns import TINY
+from campaigns import TINY, tiny_manifest
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -71,7 +71,7 @@ def test_campaign_reproduces_the_committed_manifest(campaign_dir):
     from nps.app.digests import compare, digests, read_manifest
 
     results = campaign_dir / "results"
-    manifest = read_manifest(REPO / "tests/data/manifests/tiny_campaign.sha256")
+    manifest = read_manifest(tiny_manifest())
     # the seg3 wake and BVI tables (2 wake revolutions, short of the descent's ~2.5) carry their validity
     # warning, the manifest predates it: byte-identical once that one metadata key is removed
     warned = sorted(n for n in manifest if b"nps.validity_warnings" in (pq.read_schema(results / n).metadata or {}))

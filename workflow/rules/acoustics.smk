@@ -38,11 +38,11 @@ rule acoustics:
         # one signal table per rotor: {rotor}.parquet
         signals=directory(signals_dir("acoustics")),
     params:
-        rotors=lambda wildcards: rotor_names(wildcards.aircraft),
-        thickness=config["models"]["thickness"],
-        chord_fractions=config["acoustics"]["dual_compact_chord_fractions"],
-        samples_per_rev=config["resolution"]["samples_per_rev"],
-        hinge_offsets_m=lambda wildcards: {r["name"]: r.get("hinge_offset_m", 0.0) for r in aircraft_config(wildcards)["rotors"]},
+        rotors=job_rotors,
+        thickness=setting("models", "thickness"),
+        chord_fractions=setting("acoustics", "dual_compact_chord_fractions"),
+        samples_per_rev=setting("resolution", "samples_per_rev"),
+        hinge_offsets_m=lambda wildcards: {r["name"]: r["hinge_offset_m"] for r in aircraft_config(wildcards)["rotors"]},
         code=code("acoustics"),
     log:
         log_path("acoustics", "{aircraft}/{segment}/{obsset}_{variant}"),

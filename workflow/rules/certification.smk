@@ -31,9 +31,10 @@ rule certification:
         mission=CAMPAIGN.mission,
         max_mass_kg=lambda wildcards: aircraft_config(wildcards)["gross_weight_kg"],
         segments=lambda wildcards: config["certification"]["segments"],
-        vne_mps=lambda wildcards: config["certification"].get("vne_mps"),
-        approach_min_speed_mps=lambda wildcards: config["certification"].get("approach_min_speed_mps"),
-        ground=lambda wildcards: config["footprint"].get("ground", {}),
+        vne_mps=lambda wildcards: config["certification"]["vne_mps"],
+        approach_min_speed_mps=lambda wildcards: config["certification"]["approach_min_speed_mps"],
+        ground=lambda wildcards: config["footprint"]["ground"],
+        ground_as_written=lambda wildcards: CAMPAIGN.as_written("footprint.ground"),
         absorption=config["models"]["absorption"],
         code=code("certification"),
     log:

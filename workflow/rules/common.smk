@@ -4,7 +4,8 @@ import sys
 
 from pathlib import Path
 
-from nps.app.config import ConfigError, load_campaign, load_rotor_test
+from nps.app.config import ConfigError, broadband_model, load_campaign, load_rig
+from nps.rig import RIG_AIRCRAFT
 from nps.stages.code import stage_digest
 from nps.noise.metrics import rotor_solidities
 import nps.app.resources as nps_resources
@@ -18,17 +19,33 @@ try:
 except ConfigError as error:
     sys.stderr.write(f"NPS configuration error: {error}\n")
     raise SystemExit(1)
+# the rules read the validated config with every schema default filled (nps.app.config.fill_defaults)
+config.update(CAMPAIGN.config)
 # campaign switch: findings outside the models' validity envelope become warnings (nps.app.validity)
-ALLOW_OUTSIDE_VALIDITY = config["campaign"].get("allow_outside_validity", False)
+ALLOW_OUTSIDE_VALIDITY = config["campaign"]["allow_outside_validity"]
 RESULTS = "results"
 ALL_TARGETS = []
 STAGE_SCRIPT = "../scripts/stage.py"
 BASE = f"{RESULTS}/{{aircraft}}/{{segment}}"  # per aircraft x segment artifacts
 
+# Rigs (config/rigs/*.yaml, nps.rig.case; rules in rig.smk), validated before any job: the study rules run a
+# rig as aircraft "rigs" (RIG_AIRCRAFT), segment NAME, so its artifacts are results/rigs/NAME/. Its jobs
+# read the rig's own settings (rule params through setting(), nps.app.config.rig_settings), never the
+# campaign's; rig.smk adds the set-up (trim and microphones) and the carpet.
+RIGS_DIR = Path("config/rigs")
+try:
+    RIGS = {p.stem: load_rig(p) for p in sorted(RIGS_DIR.glob("*.yaml"))}
+except ConfigError as error:
+    sys.stderr.write(f"NPS rig configuration error: {error}\n")
+    raise SystemExit(1)
+if RIG_AIRCRAFT in CAMPAIGN.aircraft:
+    sys.stderr.write(f"NPS configuration error: aircraft name '{RIG_AIRCRAFT}' is the rigs' (results/{RIG_AIRCRAFT}/)\n")
+    raise SystemExit(1)
+
 
 wildcard_constraints:
     aircraft="[a-z][a-z0-9_]*",
-    segment="seg[0-9]+",
+    segment="|".join(["seg[0-9]+", *RIGS]),
     rotor="[a-z][a-z0-9_]*",
     obsset="[a-z][a-z0-9_]*",
     variant="base|bvi",
@@ -53,8 +70,26 @@ def signals_dir(stage):
     return f"{BASE}/{stage}/{{obsset}}_{{variant}}"
 
 
+def is_rig(wildcards):
+    """Whether a job of the study rules is a rig's (aircraft "rigs", segment the rig's name)."""
+    return wildcards.aircraft == RIG_AIRCRAFT
+
+
+def settings(wildcards):
+    """The configuration a job reads: the rig's settings (resolution, models, wake, acoustics, atmosphere,
+    campaign.allow_outside_validity) for a rig, else the campaign's config."""
+    return RIGS[wildcards.segment]["settings"] if is_rig(wildcards) else config
+
+
+def setting(section, key=None):
+    """Rule param: ``settings(wildcards)[section]`` (or its ``[key]``), the campaign's or the rig's."""
+    return lambda wildcards: settings(wildcards)[section] if key is None else settings(wildcards)[section][key]
+
+
 def aircraft_config(wildcards):
-    """The whole validated aircraft configuration."""
+    """The whole validated aircraft configuration (a rig's: its one rotor)."""
+    if is_rig(wildcards):
+        return {"rotors": [RIGS[wildcards.segment]["rotor_config"]]}
     return CAMPAIGN.aircraft[wildcards.aircraft]
 
 
@@ -65,6 +100,11 @@ def rotor_names(aircraft):
 def rotor_configs(wildcards):
     """Rotor name -> validated rotor configuration, in aircraft order."""
     return {r["name"]: r for r in aircraft_config(wildcards)["rotors"]}
+
+
+def job_rotors(wildcards):
+    """Rotor names of a job's aircraft (or rig), in aircraft order."""
+    return list(rotor_configs(wildcards))
 
 
 def figure_rotors(aircraft):
@@ -116,9 +156,9 @@ def metrics_signal_inputs(wildcards):
     """Pressure-signal directory of the aircraft (and its HSI-processed version in HSI segments; the disk
     tables the signals were radiated from with BPM broadband)."""
     inputs = {"signals": signals_dir("acoustics").format(**wildcards)}
-    if wildcards.segment in CAMPAIGN.hsi_segments():
+    if not is_rig(wildcards) and wildcards.segment in CAMPAIGN.hsi_segments():
         inputs["hsi"] = signals_dir("hsi").format(**wildcards)
-    if CAMPAIGN.broadband_model() == "bpm":
+    if broadband_model(settings(wildcards)["models"]["broadband"]) == "bpm":
         inputs["disks"] = variant_disks(wildcards)
     return inputs
 
@@ -141,7 +181,10 @@ def rotor_figure_inputs(wildcards):
 # ---- Cluster requests of every job (nps.app.resources): threads, and mem_mb / runtime from the resolution ----
 # ---- in config, the job's rotors and observer set, growing with the attempt (profiles/slurm retries). ----
 def _job_load(wildcards):
-    """(observers, rotors, HSI signals read) of a job; jobs without an observer set read the hemisphere's."""
+    """(observers, rotors, HSI signals read) of a job; jobs without an observer set read the hemisphere's
+    (a rig's: its microphones)."""
+    if is_rig(wildcards):
+        return len(RIGS[wildcards.segment]["microphones_T"]), len(rotor_configs(wildcards)), False
     obsset = wildcards.get("obsset", "hemisphere")
     spec = config["observer_sets"].get(obsset)
     n_observers = nps_resources.observer_count(spec) if spec else 1
@@ -154,11 +197,11 @@ def job_threads(stage):
 
 
 def job_mem_mb(stage):
-    return lambda wildcards, attempt: nps_resources.job_mem_mb(stage, config["resolution"], *_job_load(wildcards), attempt)
+    return lambda wildcards, attempt: nps_resources.job_mem_mb(stage, settings(wildcards)["resolution"], *_job_load(wildcards), attempt)
 
 
 def job_runtime(stage):
-    return lambda wildcards, attempt: nps_resources.job_runtime_min(stage, config["resolution"], *_job_load(wildcards)[:2], attempt)
+    return lambda wildcards, attempt: nps_resources.job_runtime_min(stage, settings(wildcards)["resolution"], *_job_load(wildcards)[:2], attempt)
 
 
 # used by study.smk
@@ -202,36 +245,16 @@ def footprint_inputs(wildcards):
     return {f"hemisphere_{s}": f"{RESULTS}/{wildcards.aircraft}/{s}/source_hemisphere.parquet" for s in profile_segments()}
 
 
-# used by tests.smk: the rotor test cases of config/tests/ (nps.rig.case), validated before any job
-TESTS_DIR = Path("config/tests")
-TEST_RESULTS = f"{RESULTS}/tests/{{test}}"
-TEST_SCRIPT = "../scripts/rotor_test_stage.py"
-try:
-    ROTOR_TESTS = {p.stem: load_rotor_test(p) for p in sorted(TESTS_DIR.glob("*.yaml"))}
-except ConfigError as error:
-    sys.stderr.write(f"NPS rotor-test configuration error: {error}\n")
-    raise SystemExit(1)
+# used by rig.smk
+def rig_variant(rig):
+    """Load variant a rig radiates: with the wake's induced velocity (bvi) where models.bvi, else base."""
+    return "bvi" if RIGS[rig]["models"]["bvi"] else "base"
 
 
-wildcard_constraints:
-    test="|".join(ROTOR_TESTS) or "^$",
-
-
-def test_variant(test):
-    return "bvi" if ROTOR_TESTS[test]["models"]["bvi"] else "base"
-
-
-def rotor_test_rotors(wildcards):
-    rotor = ROTOR_TESTS[wildcards.test]["rotor_config"]
-    return {rotor["name"]: rotor}
-
-
-def test_targets(test):
-    base = f"{RESULTS}/tests/{test}"
-    out = [f"{base}/metrics.parquet"]
-    if ROTOR_TESTS[test]["metrics"]["carpet"]:
-        out.append(f"{base}/carpet.png")
-    return out
+def rig_targets(rig):
+    """A rig's products: its microphones' metrics and, where asked, the carpet."""
+    base = f"{RESULTS}/{RIG_AIRCRAFT}/{rig}"
+    return [f"{base}/metrics/microphones_{rig_variant(rig)}.parquet"] + ([f"{base}/carpet.png"] if RIGS[rig]["carpet"] else [])
 
 
 # ---- resources: mem_mb of the jobs whose arrays scale with the resolution (nps.app.resources) ----

@@ -10,9 +10,9 @@ rule loads:
         loads=directory(f"{BASE}/loads"),
     params:
         rotors=rotor_configs,
-        n_psi=config["resolution"]["n_psi"],
-        n_r=config["resolution"]["n_r"],
-        allow_outside_validity=ALLOW_OUTSIDE_VALIDITY,
+        n_psi=setting("resolution", "n_psi"),
+        n_r=setting("resolution", "n_r"),
+        allow_outside_validity=setting("campaign", "allow_outside_validity"),
         code=code("loads"),
     log:
         log_path("loads"),

@@ -12,9 +12,9 @@ rule tones:
         spectra=f"{BASE}/tones/{{obsset}}_{{variant}}_spectra.parquet",
     params:
         rotors=lambda wildcards: rotor_names(wildcards.aircraft),
-        harmonics=CAMPAIGN.output_option("tone_harmonics"),
-        loudest=CAMPAIGN.output_option("spectra_loudest"),
-        observers=CAMPAIGN.output_option("spectra_observers"),
+        harmonics=config["outputs"]["tone_harmonics"],
+        loudest=config["outputs"]["spectra_loudest"],
+        observers=config["outputs"]["spectra_observers"],
         code=code("tones"),
     log:
         log_path("tones", "{aircraft}/{segment}/{obsset}_{variant}"),

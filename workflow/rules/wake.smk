@@ -15,10 +15,10 @@ rule wake:
         bvi=directory(f"{BASE}/bvi"),
     params:
         rotors=rotor_configs,
-        wake=config["wake"],
-        revolutions=config["resolution"]["wake_revolutions"],
-        steps_per_rev=config["resolution"]["n_psi"],
-        allow_outside_validity=ALLOW_OUTSIDE_VALIDITY,
+        wake=setting("wake"),
+        revolutions=setting("resolution", "wake_revolutions"),
+        steps_per_rev=setting("resolution", "n_psi"),
+        allow_outside_validity=setting("campaign", "allow_outside_validity"),
         code=code("wake"),
     log:
         log_path("wake"),

@@ -5,7 +5,7 @@ of a NACA 0012-like airfoil, vectorised with numpy over elements × frequencies:
 broadcast together (shape S), frequencies broadcast against ``S + (n_f,)`` (a 1-D band list, or
 one list per element when the bands are Doppler shifted). Equation numbers are RP-1218's.
 
-Units and conventions (SI, docs/models/bpm.md):
+Units and conventions (SI, docs/reference/bpm.md):
 
 - chord c, span L (the element's spanwise length), trailing-edge thickness h, distance r_e in m;
   flow speed U (the speed of the flow over the section, normal to its span) in m/s; kinematic

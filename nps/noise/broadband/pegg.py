@@ -144,7 +144,7 @@ def observer_geometry(hub_m, axis, observers_m) -> tuple[np.ndarray, np.ndarray]
 # Pegg's method was built on and compared with full-scale helicopter *main* rotors. TM-80200 does
 # not tabulate a validity envelope; NPS states the span of that class of rotors (light to heavy
 # helicopters of the data's era, from R ≈ 4 m / T ≈ 10 kN to R ≈ 12 m / T ≈ 350 kN, tip speeds
-# 180-240 m/s) and warns outside it (docs/models/broadband_metrics.md).
+# 180-240 m/s) and warns outside it (docs/reference/broadband_metrics.md).
 PEGG_DATA_RANGE = {"radius_m": (4.0, 12.0), "tip_speed_mps": (180.0, 240.0), "thrust_N": (1.0e4, 3.5e5)}
 
 

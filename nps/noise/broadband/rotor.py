@@ -1,6 +1,6 @@
 """Rotor broadband self-noise: BPM blade elements as compact rotating sources, averaged over a revolution.
 
-Every blade element of the loads disk table (docs/conventions.md: ψ-major rows, hub frame H) is a
+Every blade element of the loads disk table (docs/reference/conventions.md: ψ-major rows, hub frame H) is a
 compact broadband source with the element's own chord, flow speed W = √(U_T² + U_P²) and angle of
 attack ``alpha_eff_rad``; its 1/3-octave spectrum is RP-1218's (:mod:`nps.noise.broadband.bpm`). At each sampled
 azimuth ψ the source sits at r·e_r (e_r = (cos β cos ψ, s cos β sin ψ, sin β), s the rotation
@@ -266,7 +266,7 @@ DEFAULT_MAX_AZIMUTHS = 36
 def _disk_arrays(disk: pd.DataFrame, n_azimuth: int | None) -> dict[str, np.ndarray]:
     missing = [c for c in DISK_INPUT_COLUMNS if c not in disk.columns]
     if missing:
-        raise ValueError(f"disk table lacks column(s) {missing} (expected the loads disk table, docs/conventions.md)")
+        raise ValueError(f"disk table lacks column(s) {missing} (expected the loads disk table, docs/reference/conventions.md)")
     psi = disk["psi_rad"].to_numpy(dtype=float)
     n_psi = int(np.unique(psi).size)
     if n_psi < 1 or len(disk) % n_psi:
@@ -303,7 +303,7 @@ def rotor_broadband_msp(
     """BPM broadband of one rotor: 1/3-octave band MSP (Pa²) per observer, (n_obs, n_band) arrays.
 
     ``disk``: loads disk table (``loads/{rotor}.parquet`` or ``bvi/{rotor}.parquet``, columns of
-    docs/conventions.md); ``geometry``: B, R, rotation sign; ``operating``: Ω and the advance ratios
+    docs/reference/conventions.md); ``geometry``: B, R, rotation sign; ``operating``: Ω and the advance ratios
     (the hub's velocity relative to the air is −(μ_x, μ_y, −μ_z)·ΩR in H); ``observers_h_m``
     (n_obs, 3) observer positions in the hub frame H, moving with the hub; ``medium``: c0 and ν
     (:func:`medium_from_atmosphere`); ``band_numbers``: base-10 1/3-octave band numbers of
@@ -362,7 +362,7 @@ def hub_frame_observers(trim_row, observers_g_m) -> np.ndarray:
     """Observer positions (n, 3) in a rotor's hub frame H from ground-frame positions at t = 0.
 
     x_H = R_GHᵀ (x_G − hub_G), with the hub position ``hub_*_m`` and the rotation ``r_gh_ij`` of the
-    rotor's trim row (docs/conventions.md).
+    rotor's trim row (docs/reference/conventions.md).
     """
     hub = np.array([float(trim_row[f"hub_{c}_m"]) for c in "xyz"])
     r_gh = np.array([[float(trim_row[f"r_gh_{i}{j}"]) for j in range(3)] for i in range(3)])
