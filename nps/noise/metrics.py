@@ -27,14 +27,14 @@ of a flyover (:func:`nps.noise.spectra.band_level_records`).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Mapping
+from typing import Mapping, Sequence
 
 import numpy as np
 import pandas as pd
 
 from nps.noise.broadband import pegg as broadband
 from nps.core.atmosphere import AtmosphereState, absorb_band_levels, apply_line_gain, periodic_absorption_gain
-from nps.noise.signals import signal_arrays
+from nps.noise.signals import check_tone_sum, signal_arrays
 from nps.noise.spectra import (
     LEVEL_FLOOR_DB,
     band_msp,
@@ -300,8 +300,27 @@ class ObserverSetLevels:
     pnlt_db: np.ndarray
 
 
+def _tonal_spectra(parts: Sequence[Mapping[str, np.ndarray]], dt_s: float) -> tuple[dict, np.ndarray, np.ndarray]:
+    """Narrowband MSP spectra (source → (frequency, MSP)), lines and tonal-total MSP of mutually incoherent
+    ``parts`` (each source group → p (Pa)): each part's spectra (its total the ``hsi`` signal when present,
+    else thickness + loading), added as mean-square pressures. One part: the spectra of its signals."""
+    source_spectra, total_msp = {}, None
+    for part in parts:
+        unknown = sorted(set(part) - set(TONAL_SOURCES))
+        if unknown or not {"thickness", "loading"} <= set(part):
+            raise ValueError(f"signals_pa needs 'thickness' and 'loading' (optional 'hsi'); got {sorted(part)}")
+        spectra = {name: narrowband_msp(p, dt_s) for name, p in part.items()}
+        freq, msp = spectra["hsi"] if "hsi" in part else narrowband_msp(part["thickness"] + part["loading"], dt_s)
+        total_msp = msp if total_msp is None else total_msp + msp
+        for name, (f, m) in spectra.items():
+            source_spectra[name] = (f, m) if name not in source_spectra else (f, source_spectra[name][1] + m)
+    if len(parts) > 1 and len({frozenset(part) for part in parts}) > 1:
+        raise ValueError(f"incoherent parts must hold the same source groups; got {[sorted(part) for part in parts]}")
+    return source_spectra, freq, total_msp
+
+
 def observer_set_metrics(
-    signals_pa: Mapping[str, np.ndarray],
+    signals_pa: Mapping[str, np.ndarray] | Sequence[Mapping[str, np.ndarray]],
     dt_s: float,
     bpf_hz: float,
     broadband_db: np.ndarray | None = None,
@@ -311,8 +330,9 @@ def observer_set_metrics(
     """Levels of one observer set from its summed (over rotors) periodic pressure signals.
 
     ``signals_pa``: source name (``thickness``, ``loading``, optionally ``hsi``) → p (Pa),
-    shape (n_observers, N), one period sampled every ``dt_s`` s, already absorbed if wanted.
-    The tonal total is the ``hsi`` signal when present (HSI processing replaces each rotor's
+    shape (n_observers, N), one period sampled every ``dt_s`` s, already absorbed if wanted; or a
+    sequence of such mappings whose phases are not locked (one per rotor, tone sum ``incoherent``):
+    their mean-square spectra add (:func:`_tonal_spectra`). The tonal total is the ``hsi`` signal when present (HSI processing replaces each rotor's
     thickness + loading sum), else thickness + loading. ``broadband_db``: broadband 1/3-octave
     levels (n_observers, n_bands) for ``band_numbers`` (energy-summed over rotors), added to the
     total by energy band by band. OASPL_A weights the tonal lines at their exact frequencies
@@ -320,18 +340,14 @@ def observer_set_metrics(
     ``bpf_hz`` (main-rotor BPF) of the tonal total. PNL/PNLT: of the total band levels.
     Tonal energy above the Nyquist frequency of the signals is not represented.
     """
-    unknown = sorted(set(signals_pa) - set(TONAL_SOURCES))
-    if unknown or not {"thickness", "loading"} <= set(signals_pa):
-        raise ValueError(f"signals_pa needs 'thickness' and 'loading' (optional 'hsi'); got {sorted(signals_pa)}")
+    parts = [signals_pa] if isinstance(signals_pa, Mapping) else list(signals_pa)
+    if not parts:
+        raise ValueError("signals_pa: no signals")
     bands = np.asarray(band_numbers, dtype=np.int64)
     if np.any(np.diff(bands) != 1) or bands[0] > PNL_BANDS[0] or bands[-1] < PNL_BANDS[-1]:
         raise ValueError("band_numbers must be consecutive and include the PNL bands -13..10 (50 Hz-10 kHz)")
     centres = third_octave_bands(bands)["center_hz"]
-    source_spectra = {name: narrowband_msp(p, dt_s) for name, p in signals_pa.items()}
-    if "hsi" in signals_pa:
-        freq, total_msp = source_spectra["hsi"]
-    else:
-        freq, total_msp = narrowband_msp(signals_pa["thickness"] + signals_pa["loading"], dt_s)
+    source_spectra, freq, total_msp = _tonal_spectra(parts, dt_s)
     # the 0 Hz line (the mean pressure) is not sound: excluded from every level
     oaspl = {name: level_db(msp[..., 1:].sum(axis=-1)) for name, (_, msp) in source_spectra.items()}
     bands_db = {name: level_db(band_msp(f, msp, bands)) for name, (f, msp) in source_spectra.items()}
@@ -371,6 +387,7 @@ def metrics_tables(
     broadband_on: bool = True,
     harmonics: tuple[int, int] = (7, 40),
     broadband_msp: Mapping[str, np.ndarray] | None = None,
+    tone_sum: str = "coherent",
 ) -> tuple[pd.DataFrame, pd.DataFrame, ObserverSetLevels]:
     """Metrics and band tables of one aircraft × segment × observer set × variant.
 
@@ -381,6 +398,8 @@ def metrics_tables(
     ``atmosphere``: absorption over each rotor's hub-observer distance, or None for none.
     ``broadband_msp``: rotor → broadband 1/3-octave band MSP (Pa², (n_observers, STUDY_BANDS), observers
     in ascending id order) computed elsewhere (BPM), used instead of Pegg's when ``broadband_on``.
+    ``tone_sum`` (:data:`nps.noise.signals.TONE_SUMS`): ``coherent`` sums the rotors' pressures, ``incoherent`` their
+    mean-square spectra (rotors whose phases are not locked; broadband is an energy sum either way).
     Returns (metrics: one row per observer, bands: observer × source × band, the levels
     object with the narrowband tonal spectra, observers in ascending id order).
     """
@@ -390,7 +409,9 @@ def metrics_tables(
     positions = obs[["x_m", "y_m", "z_m"]].to_numpy(dtype=float)
     rows = [row for _, row in trim.iterrows()]
     geometry = [_hub_observer_geometry(row, positions) for row in rows]
-    summed, dt = _summed_tonal_signals(rows, geometry, signals, hsi_signals, ids, atmosphere)
+    check_tone_sum(tone_sum)
+    parts, dt = _rotor_tonal_signals(rows, geometry, signals, hsi_signals, ids, atmosphere)
+    summed = parts if tone_sum == "incoherent" else coherent_sum(parts)
     broadband_db = _broadband_band_levels(rows, geometry, solidity, atmosphere, broadband_msp) if broadband_on else None
     ref = trim.iloc[0]
     bpf_hz = float(ref["n_blades"]) * float(ref["omega_rad_s"]) / (2.0 * np.pi)
@@ -421,14 +442,24 @@ def _hub_observer_geometry(row: pd.Series, positions: np.ndarray) -> tuple[np.nd
     return broadband.observer_geometry(hub, axis, positions)
 
 
-def _summed_tonal_signals(rows, geometry, signals, hsi_signals, ids: np.ndarray,
-                          atmosphere: AtmosphereState | None) -> tuple[dict[str, np.ndarray], float]:
-    """Source group → p (Pa) (n_observers, N) summed over the rotors (trim order), each rotor's
-    signals absorbed over its own hub-observer distances; and the sample interval (s)."""
+def coherent_sum(parts: Sequence[Mapping[str, np.ndarray]]) -> dict[str, np.ndarray]:
+    """Source group → p (Pa) summed over ``parts`` (the rotors, in order): the coherent tone sum."""
     summed: dict[str, np.ndarray] = {}
+    for part in parts:
+        for group, p in part.items():
+            summed[group] = summed.get(group, 0.0) + p
+    return summed
+
+
+def _rotor_tonal_signals(rows, geometry, signals, hsi_signals, ids: np.ndarray,
+                         atmosphere: AtmosphereState | None) -> tuple[list[dict[str, np.ndarray]], float]:
+    """Per rotor (trim order), source group → p (Pa) (n_observers, N), each rotor's signals absorbed over
+    its own hub-observer distances; and the sample interval (s)."""
+    parts: list[dict[str, np.ndarray]] = []
     time_ref = None
     for row, (dist, _) in zip(rows, geometry):
         name = row["rotor"]
+        part: dict[str, np.ndarray] = {}
         tables = [(signals[name], f"pressure signals of rotor '{name}'")]
         if hsi_signals is not None:
             tables.append((hsi_signals[name], f"HSI signals of rotor '{name}'"))
@@ -452,8 +483,9 @@ def _summed_tonal_signals(rows, geometry, signals, hsi_signals, ids: np.ndarray,
                     if key not in gains:
                         gains[key] = periodic_absorption_gain(p.shape[-1], dt, dist, atmosphere)
                     p = apply_line_gain(p, gains[key])
-                summed[group] = summed.get(group, 0.0) + p
-    return summed, float(time_ref[1] - time_ref[0])
+                part[group] = part.get(group, 0.0) + p
+        parts.append(part)
+    return parts, float(time_ref[1] - time_ref[0])
 
 
 def _broadband_band_levels(rows, geometry, solidity: Mapping[str, float], atmosphere: AtmosphereState | None,

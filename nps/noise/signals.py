@@ -15,6 +15,15 @@ import pandas as pd
 
 SIGNAL_COLUMNS = ("observer", "group", "time_s", "p_Pa")
 TOTAL = "total"  # group holding the sum of the other groups
+TONE_SUMS = ("coherent", "incoherent")
+"""How the rotors of an aircraft add (aircraft schema ``tone_sum``, docs/reference/tones.md): ``coherent``
+sums their pressures (phases locked), ``incoherent`` their mean-square spectra (phases not locked)."""
+
+
+def check_tone_sum(tone_sum: str) -> None:
+    """Refuse a ``tone_sum`` other than those of :data:`TONE_SUMS`."""
+    if tone_sum not in TONE_SUMS:
+        raise ValueError(f"tone_sum: expected one of {list(TONE_SUMS)}, got {tone_sum!r}")
 
 
 def signals_table(ids: np.ndarray, groups, pressure: np.ndarray, grid, total: bool = True) -> pd.DataFrame:

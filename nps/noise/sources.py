@@ -182,26 +182,29 @@ def _rotating_kinematics(lines, omega: float, dpsi: float, air_rot: np.ndarray, 
     return stack, np.concatenate(groups_d), np.concatenate(volumes).astype(float)
 
 
-def _source_steps(tau_range_s, n_psi: int, n_blades: int, period: float) -> tuple[np.ndarray, list[int]]:
-    """Source-time steps (units of T/n_psi) and blades: blade 0 over one revolution (periodic), else every blade
-    over ``tau_range_s``."""
+def _source_steps(tau_range_s, n_psi: int, n_blades: int, period: float, phase_rad: float = 0.0) -> tuple[np.ndarray, list[int]]:
+    """Source-time steps and blades: blade 0 over one revolution (periodic), else every blade over ``tau_range_s``.
+    Step i is the source time τ_i = (2π i/n_psi − phase_rad)/Ω, when blade 0 is at the table azimuth ψ_i."""
     if tau_range_s is None:
         return np.arange(n_psi), [0]
     if n_psi % n_blades:
         raise AcousticsError(f"disk table: n_psi = {n_psi} must be divisible by n_blades = {n_blades} for stationary observers")
-    steps = np.arange(int(np.floor(tau_range_s[0] / period * n_psi)), int(np.ceil(tau_range_s[1] / period * n_psi)) + 1)
+    shift = phase_rad / (2.0 * np.pi) * period  # the step grid's time shift (s)
+    steps = np.arange(int(np.floor((tau_range_s[0] + shift) / period * n_psi)),
+                      int(np.ceil((tau_range_s[1] + shift) / period * n_psi)) + 1)
     return steps, list(range(n_blades))
 
 
 def _ground_frame_lines(stack, motion: RotorMotion, steps: np.ndarray, blades: list[int], tau: np.ndarray,
-                        n_psi: int) -> list[np.ndarray]:
+                        n_psi: int, phase_rad: float = 0.0) -> list[np.ndarray]:
     """The six rotating-frame components of every blade at source times ``tau`` in the ground frame (position
-    and velocity with the hub's flight added), each (n_blade·n_source, n_tau, 3)."""
+    and velocity with the hub's flight added), each (n_blade·n_source, n_tau, 3); blade k at
+    ψ_k = Ω τ + phase_rad + 2πk/B, on the table's azimuth ``steps`` + k n_psi/B."""
     omega, s, n_blades, r_gh = motion.omega_rad_s, motion.rotation_sign, motion.n_blades, motion.r_gh
     out = [[] for _ in range(6)]
     for k in blades:
         index = (steps + k * n_psi // n_blades) % n_psi
-        psi = omega * tau + 2.0 * np.pi * k / n_blades
+        psi = omega * tau + phase_rad + 2.0 * np.pi * k / n_blades
         e_r = np.stack([np.cos(psi), s * np.sin(psi), np.zeros_like(psi)], axis=-1)
         e_t = np.stack([-np.sin(psi), s * np.cos(psi), np.zeros_like(psi)], axis=-1)
         basis = np.stack([e_r, e_t, np.broadcast_to([0.0, 0.0, 1.0], e_r.shape)], axis=-1)  # (n_tau, 3 H, 3 comp)
@@ -218,13 +221,18 @@ def _ground_frame_lines(stack, motion: RotorMotion, steps: np.ndarray, blades: l
 
 def rotor_sources(disk: pd.DataFrame, motion: RotorMotion, *, thickness: ThicknessModel = ThicknessModel(),
                   hinge_offset_m: float = 0.0, rho0_kg_m3: float, c0_mps: float,
-                  tau_range_s: tuple[float, float] | None = None) -> CompactSources:
+                  tau_range_s: tuple[float, float] | None = None, phase_rad: float = 0.0) -> CompactSources:
     """Compact source lines of one rotor in the ground frame (ρ0 in kg/m³; c0 in m/s, every line
     must move subsonically relative to the medium).
 
-    ``tau_range_s=None``: periodic sources, blade 0 over one revolution starting at τ = 0 (the
+    ``phase_rad``: blade phase, the azimuth of blade 0 at t = 0 (ψ_0(t) = Ω t + phase_rad, in the
+    rotor's own sense; docs/reference/acoustics.md "Blade phasing"). The source times are those at
+    which blade 0 sits on the table's azimuths, τ_i = (2π i/n_psi − phase_rad)/Ω, so the loads are
+    used as tabulated (no interpolation in ψ) for any phase.
+
+    ``tau_range_s=None``: periodic sources, blade 0 over one revolution from τ_0 = −phase_rad/Ω (the
     other B − 1 blades are implied by symmetry: identical loads vs ψ). Otherwise all blades at
-    τ_i = i·T/n_psi covering ``tau_range_s`` (requires n_psi divisible by B so every blade sits on
+    the τ_i covering ``tau_range_s`` (requires n_psi divisible by B so every blade sits on
     the table's ψ grid).
     """
     arrays = disk_arrays(disk)
@@ -238,9 +246,9 @@ def rotor_sources(disk: pd.DataFrame, motion: RotorMotion, *, thickness: Thickne
     lines = _blade_components(arrays, thickness, hinge_offset_m, rho0_kg_m3, omega, air_rot)
     stack, group_names, volume = _rotating_kinematics(lines, omega, dpsi, air_rot, c0_mps, n_r)
     n_blades = motion.n_blades
-    steps, blades = _source_steps(tau_range_s, n_psi, n_blades, period)
-    tau = steps * period / n_psi
-    arrays6 = _ground_frame_lines(stack, motion, steps, blades, tau, n_psi)
+    steps, blades = _source_steps(tau_range_s, n_psi, n_blades, period, phase_rad)
+    tau = steps * period / n_psi - phase_rad / omega
+    arrays6 = _ground_frame_lines(stack, motion, steps, blades, tau, n_psi, phase_rad)
     names = np.tile(group_names, len(blades))
     volume = np.tile(volume, len(blades))
     groups = (LOADING, THICKNESS)
@@ -280,11 +288,12 @@ def _emission_time(x0: np.ndarray, v_obs: np.ndarray, t_s: float, y0: np.ndarray
 
 
 def radiate_rotor(disk: pd.DataFrame, trim_row, observers: Observers, grid: TimeGrid, *, thickness=None,
-                  hinge_offset_m: float = 0.0) -> np.ndarray:
+                  hinge_offset_m: float = 0.0, phase_rad: float = 0.0) -> np.ndarray:
     """Pressure (Pa) of one rotor, shape (n_obs, 2, n_samples), groups (loading, thickness).
 
     ``disk``: disk table (docs/reference/conventions.md), ``trim_row``: the rotor's ``trim.parquet`` row
-    (kinematics, ρ0 and c0). Observers moving with the aircraft use the periodic one-blade
+    (kinematics, ρ0 and c0); ``phase_rad`` the azimuth of its blade 0 at t = 0 (:func:`rotor_sources`).
+    Observers moving with the aircraft use the periodic one-blade
     path (exact periodicity and blade symmetry); any other observers get all blades over the
     source-time span their window needs.
     """
@@ -292,7 +301,7 @@ def radiate_rotor(disk: pd.DataFrame, trim_row, observers: Observers, grid: Time
     motion = RotorMotion.from_trim_row(trim_row)
     c0 = float(trim_row["speed_of_sound_mps"])
     rho0 = float(trim_row["density_kg_m3"])
-    kwargs = dict(thickness=thickness, hinge_offset_m=hinge_offset_m, rho0_kg_m3=rho0, c0_mps=c0)
+    kwargs = dict(thickness=thickness, hinge_offset_m=hinge_offset_m, rho0_kg_m3=rho0, c0_mps=c0, phase_rad=phase_rad)
     if np.allclose(observers.velocity_mps, motion.velocity_mps[None, :], rtol=0.0, atol=1e-9 * c0):
         sources = rotor_sources(disk, motion, **kwargs)
     else:

@@ -32,7 +32,7 @@ from typing import Mapping
 import numpy as np
 import pandas as pd
 
-from nps.noise.signals import TOTAL, signal_arrays
+from nps.noise.signals import TOTAL, check_tone_sum, signal_arrays
 from nps.noise.spectra import level_db, narrowband_msp
 
 TONE_COLUMNS = ("observer", "source", "harmonic", "frequency_hz", "spl_db", "phase_rad")
@@ -86,10 +86,11 @@ def blade_passage_hz(trim_row) -> float:
     return float(trim_row["n_blades"]) * float(trim_row["omega_rad_s"]) / (2.0 * np.pi)
 
 
-def _rotor_pressures(signals: Mapping[str, pd.DataFrame], rotors) -> tuple[np.ndarray, np.ndarray, dict, dict]:
-    """Observer ids, time grid, rotor → p (n_obs, N) summed over groups, group → p summed over rotors."""
+def _rotor_pressures(signals: Mapping[str, pd.DataFrame], rotors) -> tuple[np.ndarray, np.ndarray, dict, dict, dict]:
+    """Observer ids, time grid, rotor → p (n_obs, N) summed over groups, group → p summed over rotors,
+    rotor → (group → p)."""
     ids_ref = time_ref = None
-    per_rotor, per_group = {}, {}
+    per_rotor, per_group, parts = {}, {}, {}
     for name in rotors:
         what = f"pressure signals of rotor '{name}'"
         ids, time, groups = signal_arrays(signals[name], what=what)
@@ -100,13 +101,14 @@ def _rotor_pressures(signals: Mapping[str, pd.DataFrame], rotors) -> tuple[np.nd
         elif time.shape != time_ref.shape or not np.allclose(time, time_ref):
             raise ValueError(f"{what}: time grid differs from rotor '{rotors[0]}'")
         groups = {g: p for g, p in groups.items() if g != TOTAL}  # a producer's redundant sum of the groups
-        per_rotor[name] = sum(groups.values())
+        per_rotor[name], parts[name] = sum(groups.values()), groups
         for g, p in groups.items():
             per_group[g] = per_group.get(g, 0.0) + p
-    return ids_ref, time_ref, per_rotor, per_group
+    return ids_ref, time_ref, per_rotor, per_group, parts
 
 
-def tone_table(signals: Mapping[str, pd.DataFrame], trim: pd.DataFrame, n_harmonics: int) -> pd.DataFrame:
+def tone_table(signals: Mapping[str, pd.DataFrame], trim: pd.DataFrame, n_harmonics: int,
+               tone_sum: str = "coherent") -> pd.DataFrame:
     """Tone table of an aircraft at one observer set: one row per observer × source × harmonic.
 
     ``signals``: rotor name → signal table (docs/reference/conventions.md; all rotors on one grid);
@@ -114,16 +116,19 @@ def tone_table(signals: Mapping[str, pd.DataFrame], trim: pd.DataFrame, n_harmon
     ``source`` is a rotor name (that rotor's signal, all groups: harmonics m of its own BPF) or
     ``total`` (harmonics m of the reference rotor's BPF: the sum of the complex amplitudes of every
     rotor's tone at exactly that frequency; a rotor whose harmonics fall between them, such as a tail
-    rotor at a non-integer speed ratio, has its tones in its own rows only). m = 1…``n_harmonics``,
+    rotor at a non-integer speed ratio, has its tones in its own rows only); with ``tone_sum``
+    ``incoherent`` (rotors whose phases are not locked) the total's mean-square pressure is the sum of
+    theirs, |C|² = Σ|C_j|², and its phase_rad is 0 (an energy sum has no phase). m = 1…``n_harmonics``,
     fewer where the record's Nyquist frequency cuts them off. Columns :data:`TONE_COLUMNS`; free field
     (no air absorption), the acoustics signals as radiated (no HSI processing).
     """
     if n_harmonics < 1:
         raise ValueError(f"n_harmonics: expected an integer >= 1, got {n_harmonics}")
+    check_tone_sum(tone_sum)
     rotors = list(trim["rotor"])
     if set(signals) != set(rotors):
         raise ValueError(f"pressure signals are for rotors {sorted(signals)}, trim has {sorted(rotors)}")
-    ids, time, per_rotor, _ = _rotor_pressures(signals, rotors)
+    ids, time, per_rotor, _, _ = _rotor_pressures(signals, rotors)
     dt, t0 = float(time[1] - time[0]), float(time[0])
     bpfs = [blade_passage_hz(row) for _, row in trim.iterrows()]
     amplitudes = {}  # every harmonic the record resolves, per rotor
@@ -139,7 +144,12 @@ def tone_table(signals: Mapping[str, pd.DataFrame], trim: pd.DataFrame, n_harmon
         n = m_ref * bpfs[0] / bpf
         k = np.rint(n).astype(np.int64)
         hit = (np.abs(n - k) <= COMMENSURATE_RTOL * n) & (k >= 1) & (k <= amplitudes[name].shape[-1])
-        total[:, hit] += amplitudes[name][:, k[hit] - 1]
+        if tone_sum == "incoherent":
+            total[:, hit] += np.abs(amplitudes[name][:, k[hit] - 1]) ** 2
+        else:
+            total[:, hit] += amplitudes[name][:, k[hit] - 1]
+    if tone_sum == "incoherent":
+        total = np.sqrt(total.real) + 0j
     sources = [(name, amplitudes[name][:, :n_harmonics], bpf) for name, bpf in zip(rotors, bpfs)]
     sources.append((TOTAL, total, bpfs[0]))
     frames = []
@@ -157,35 +167,49 @@ def tone_table(signals: Mapping[str, pd.DataFrame], trim: pd.DataFrame, n_harmon
     return pd.concat(frames, ignore_index=True)
 
 
-def loudest_observers(signals: Mapping[str, pd.DataFrame], rotors, count: int) -> np.ndarray:
-    """Ids of the ``count`` observers with the highest mean-square total pressure (ties: lower id first)."""
-    ids, _, per_rotor, _ = _rotor_pressures(signals, list(rotors))
-    total = sum(per_rotor.values())
-    power = np.mean((total - total.mean(axis=-1, keepdims=True)) ** 2, axis=-1)
+def _fluctuation_power(p: np.ndarray) -> np.ndarray:
+    return np.mean((p - p.mean(axis=-1, keepdims=True)) ** 2, axis=-1)
+
+
+def loudest_observers(signals: Mapping[str, pd.DataFrame], rotors, count: int, tone_sum: str = "coherent") -> np.ndarray:
+    """Ids of the ``count`` observers with the highest mean-square total pressure (ties: lower id first);
+    ``tone_sum`` ``incoherent``: the sum of the rotors' mean-square pressures."""
+    check_tone_sum(tone_sum)
+    ids, _, per_rotor, _, _ = _rotor_pressures(signals, list(rotors))
+    if tone_sum == "incoherent":
+        power = sum(_fluctuation_power(p) for p in per_rotor.values())
+    else:
+        power = _fluctuation_power(sum(per_rotor.values()))
     order = np.lexsort((ids, -power))
     return np.sort(ids[order[: max(0, int(count))]])
 
 
-def narrowband_table(signals: Mapping[str, pd.DataFrame], rotors, observers) -> pd.DataFrame:
+def narrowband_table(signals: Mapping[str, pd.DataFrame], rotors, observers, tone_sum: str = "coherent") -> pd.DataFrame:
     """Narrowband line spectra at ``observers`` (ids): one row per observer × source × line.
 
     ``source``: each source group (``thickness``, ``loading``, …) summed over the rotors, and
     ``total``; lines k/(N Δt), k = 1…⌊N/2⌋ of the record (one reference-rotor revolution: every line
     a harmonic of the reference shaft frequency), unwindowed: Σ msp = mean-square pressure
     (:func:`nps.noise.spectra.narrowband_msp`). ``msp_Pa2`` and ``spl_db`` (dB re 20 µPa) per line; free
-    field, no broadband (its 1/3-octave bands are in the metrics' band table).
+    field, no broadband (its 1/3-octave bands are in the metrics' band table). ``tone_sum``
+    ``incoherent``: every source's spectrum is the sum of the rotors' mean-square spectra.
     """
-    ids, time, _, per_group = _rotor_pressures(signals, list(rotors))
+    check_tone_sum(tone_sum)
+    ids, time, _, per_group, parts = _rotor_pressures(signals, list(rotors))
     wanted = np.asarray(observers, dtype=np.int64)
     missing = sorted(set(wanted.tolist()) - set(ids.tolist()))
     if missing:
         raise ValueError(f"observers {missing} are not in the pressure signals (observers {ids.min()}…{ids.max()})")
     rows = np.searchsorted(ids, np.sort(wanted))
     dt = float(time[1] - time[0])
-    sources = {**per_group, TOTAL: sum(per_group.values())}
+    if tone_sum == "incoherent":
+        coherent_sets = [{**groups, TOTAL: sum(groups.values())} for groups in parts.values()]
+    else:
+        coherent_sets = [{**per_group, TOTAL: sum(per_group.values())}]
     frames = []
-    for source, p in sources.items():
-        freq, msp = narrowband_msp(p[rows], dt)
+    for source in coherent_sets[0]:
+        spectra = [narrowband_msp(sets[source][rows], dt) for sets in coherent_sets]
+        freq, msp = spectra[0][0], sum(m for _, m in spectra)
         freq, msp = freq[1:], msp[:, 1:]  # the 0 Hz line (mean pressure) is not sound
         frames.append(pd.DataFrame({
             "observer": np.repeat(ids[rows], freq.size).astype(np.int32),

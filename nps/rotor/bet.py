@@ -35,6 +35,16 @@ Flapping (rigid blade, hinge offset e, uniform mass)
     solved together with λ0 by Newton's method; β, β̇ then enter U_P. I_β uses the operating
     density (the configured atmosphere) with the configured Lock number.
 
+Pitch–flap coupling (δ3) and teetering hubs (docs/reference/loads.md)
+    θ gains −tan δ3 · β_h, β_h the flap angle about the hinge: β for an articulated blade, the teeter
+    angle β − β_p for a teetering rotor (β_p its precone). With the harmonic balance above this raises
+    the effective flap frequency to ν_e² = ν_β² + (γ/2) tan δ3 ∫(x − ε)x² dx (ν_e² = 1 + (γ/8) tan δ3
+    for ε = 0 and no root cutout). A teetering rotor (two blades in one piece on a central hinge,
+    e = 0) has no coning degree of freedom: β0 = β_p is held and only λ0, β1c, β1s are solved. Its first-
+    harmonic equations are those of an e = 0 blade (the teeter equation 2I_β(β_t'' + β_t) = M_β(ψ) −
+    M_β(ψ + π) has twice one blade's first harmonic on the right), so the second blade, at ψ + π, flaps
+    β(ψ + π) − β_p = −(β(ψ) − β_p): equal and opposite; the hub moment is zero (K = 0).
+
 Hub moments (H frame, conventions' signs)
     M_x = s (B/2) K β1s (roll, + lifts the advancing side), M_y = −(B/2) K β1c (pitch, + nose
     up), K = I_β Ω² (ν_β² − 1): the blade that flaps up pulls the hub up on its side through
@@ -75,7 +85,7 @@ import numpy as np
 import pandas as pd
 
 from nps.core.solvers import ConvergenceError, forward_difference_jacobian, limited_secant, newton_fd
-from nps.rotor.geometry import OperatingPoint, RotorGeometry
+from nps.rotor.geometry import TEETERING, OperatingPoint, RotorGeometry
 
 DISK_COLUMNS = (
     "psi_rad", "r_m", "dr_m", "chord_m", "thickness_m", "theta_rad", "beta_rad", "beta_dot_rad_s",
@@ -403,6 +413,8 @@ class _Disk:
         self.prescribed_flap = None if flap is None else (flap[0][:, None], omega * flap[1][:, None])
         self.flap_arm = np.maximum(self.r - geometry.hinge_offset_m, 0.0)
         self.nu2 = flap_frequency_sq(geometry)
+        self.pitch_flap = math.tan(geometry.delta3_rad)  # K_P = tan δ3: Δθ = −K_P β_h
+        self.flap_ref = geometry.precone_rad if geometry.hub == TEETERING else 0.0  # β_h = β − flap_ref
         self.i_omega2 = flap_inertia(geometry, op.density_kg_m3) * omega**2
         self.norm_ct = op.density_kg_m3 * np.pi * R**2 * self.tip_speed**2
         self.blade_avg = geometry.n_blades / grid.n_psi
@@ -429,6 +441,8 @@ class _Disk:
             beta_dot = omega * (beta1s * self.cos - beta1c * self.sin)
         else:
             beta, beta_dot = self.prescribed_flap
+        if self.pitch_flap != 0.0:  # δ3: the blade pitches down as it flaps up about its hinge
+            theta = theta - self.pitch_flap * (beta - self.flap_ref)
         up = self.tip_speed * lam + (self.r[None, :] - self.g.hinge_offset_m) * beta_dot + self.ur * beta
         if self.extra_up is not None:
             up = up + self.extra_up
@@ -467,6 +481,10 @@ class _StateSolver:
     def __init__(self, disk: _Disk, x0: np.ndarray, flapping: bool = True):
         self.disk, self.x, self.jac = disk, np.array(x0, dtype=float), None
         self.active = np.arange(4) if flapping and disk.prescribed_flap is None else np.arange(1)
+        if disk.g.hub == TEETERING:  # no coning degree of freedom: β0 is the precone
+            self.x[1] = disk.g.precone_rad
+            if self.active.size == 4:
+                self.active = np.array([0, 2, 3])
         if disk.prescribed_flap is not None:  # reported flapping: the prescribed mean and first harmonics
             beta = disk.prescribed_flap[0][:, 0]
             n = beta.size

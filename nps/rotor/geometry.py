@@ -16,6 +16,14 @@ import numpy as np
 from nps.rotor.airfoils import Airfoil, LinearAirfoil, read_airfoil, section_coefficients
 from nps.rotor.blade import BladeError, BladeTable, blade_from_config
 
+ARTICULATED, TEETERING = "articulated", "teetering"
+HUBS = (ARTICULATED, TEETERING)
+
+
+class HubError(BladeError):
+    """The hub fields of a rotor (``hub``, ``precone_deg``, ``delta3_deg``) do not describe a hub NPS models
+    (a :class:`~nps.rotor.blade.BladeError`, so configuration loading reports it with the file and rotor)."""
+
 
 @dataclass(frozen=True)
 class RotorGeometry:
@@ -42,6 +50,13 @@ class RotorGeometry:
     flap angle whose sine is the tip height over R (the wake's release height, the blade points
     of the BVI loads) and whose rate enters U_P (:mod:`nps.rotor.bet`, the trim then meets the hub
     moments with the aerodynamic first-harmonic flap moment).
+
+    Hub and pitch–flap coupling (docs/reference/loads.md, "Teetering rotors", "Pitch–flap coupling (δ3)"):
+    ``hub`` is ``articulated`` (every blade flaps on its own hinge at ``hinge_offset_m``, coning free) or
+    ``teetering`` (two blades in one piece on a central teeter hinge: n_blades 2, hinge offset 0; the
+    blades flap equal and opposite about the fixed coning ``precone_rad``, no hub moment).
+    ``delta3_rad`` δ3 adds θ = −tan δ3 · β_h to the pitch, β_h the flap angle about the hinge (β for an
+    articulated blade, the teeter angle β − precone for a teetering rotor).
     """
 
     name: str
@@ -60,8 +75,12 @@ class RotorGeometry:
     higher_harmonic_pitch: tuple[tuple[int, float, float], ...] = ()
     elastic_twist_harmonics: tuple[tuple[int, float, float], ...] = ()
     prescribed_flap_harmonics: tuple[tuple[int, float, float], ...] = ()
+    hub: str = ARTICULATED
+    delta3_rad: float = 0.0
+    precone_rad: float = 0.0
 
     def __post_init__(self):
+        check_hub(self)
         if self.blade is not None:
             self.blade.check_covers(self.root_cutout_m, self.radius_m)
             missing = sorted(set(self.blade.airfoils) - set(self.airfoils))
@@ -169,7 +188,29 @@ class RotorGeometry:
                 for h in rotor.get("higher_harmonic_pitch", ())),
             elastic_twist_harmonics=_degree_harmonics(rotor.get("elastic_twist_harmonics", ())),
             prescribed_flap_harmonics=_degree_harmonics(rotor.get("prescribed_flap", ())),
+            hub=str(rotor.get("hub", ARTICULATED)),
+            delta3_rad=math.radians(float(rotor.get("delta3_deg", 0.0))),
+            precone_rad=math.radians(float(rotor.get("precone_deg", 0.0))),
         )
+
+
+def check_hub(geometry: RotorGeometry) -> None:
+    """Raise :class:`HubError` naming the field when the hub fields do not describe a hub NPS models."""
+    g, where = geometry, f"rotor '{geometry.name}'"
+    if g.hub not in HUBS:
+        raise HubError(f"{where}: hub: expected one of {list(HUBS)}, got {g.hub!r}")
+    if not (math.isfinite(g.delta3_rad) and abs(g.delta3_rad) < math.radians(89.0)):
+        raise HubError(f"{where}: delta3_deg: expected a finite angle within ±89°, got {math.degrees(g.delta3_rad)!r}")
+    if g.hub == TEETERING:
+        if g.n_blades != 2:
+            raise HubError(f"{where}: n_blades: a teetering hub (hub: teetering) carries two blades in one piece, "
+                           f"expected n_blades 2, got {g.n_blades}")
+        if g.hinge_offset_m != 0.0:
+            raise HubError(f"{where}: hinge_offset_m: a teetering hub flaps about the rotor axis, expected 0, "
+                           f"got {g.hinge_offset_m}")
+    elif g.precone_rad != 0.0:
+        raise HubError(f"{where}: precone_deg: applies to a teetering hub only (an articulated blade cones freely "
+                       f"about its hinge), got {math.degrees(g.precone_rad)!r} with hub: {g.hub}")
 
 
 def _fourier_series(harmonics, psi: np.ndarray) -> np.ndarray:
@@ -239,7 +280,8 @@ class RotorMotion:
     """Rigid motion of a rotor hub in the ground frame G (one ``trim.parquet`` row).
 
     Hub position at time t: hub_position_m + velocity_mps · t. ``r_gh`` takes H components
-    to G components. Blade k azimuth ψ_k(t) = Ω t + 2πk/B.
+    to G components. Blade k azimuth ψ_k(t) = Ω t + φ + 2πk/B, φ the blade phase (``phase_rad`` of
+    :func:`nps.noise.sources.rotor_sources`, default 0).
     """
 
     hub_position_m: np.ndarray

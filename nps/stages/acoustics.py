@@ -7,13 +7,18 @@ outputs: ``signals``, a directory of ``{rotor}.parquet`` signal tables (docs/ref
 grid: one revolution of the reference (first) rotor with ``samples_per_rev`` samples from t = 0.
 params: ``rotors`` (names, the first is the reference), ``hinge_offsets_m`` (rotor → hinge offset),
 ``thickness`` (``dual_compact`` or ``compact_monopole``), ``chord_fractions`` (dual-compact line
-positions), ``samples_per_rev``, ``aircraft``, ``segment``, ``obsset``, ``variant``.
+positions), ``samples_per_rev``, ``aircraft``, ``segment``, ``obsset``, ``variant``; optional ``phases_deg``
+(rotor → blade phase, the azimuth of blade 0 at t = 0, the aircraft schema's ``rotors[].phase_deg``; without
+it every rotor's blade 0 is at ψ = 0 at t = 0). A signal table of a rotor with a non-zero phase records
+``phase_deg`` in its metadata.
 
 Before computing: provenance of every input (aircraft, segment, observer set, rotor; disk tables of
 the loads stage for variant ``base``, of the BVI stage for ``bvi``), non-empty tables, memory.
 """
 
 from __future__ import annotations
+
+import math
 
 from nps.noise.acoustics import LOADING, THICKNESS, AcousticsError, Observers
 from nps.app.io import check_provenance, read_table, rotor_path, write_table
@@ -41,6 +46,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     observers = read_table(inputs["observers"], required=OBSERVER_COLUMNS, nonempty=True, finite=True)
     obs = Observers(observers[["x_m", "y_m", "z_m"]].to_numpy(float), observers[["vx_mps", "vy_mps", "vz_mps"]].to_numpy(float))
     grid = common_grid(trim_row(trim, rotors[0], str(inputs["trim"])), samples)
+    phases_deg = params["phases_deg"] if "phases_deg" in params else dict.fromkeys(rotors, 0.0)
     report = []
     for name in rotors:
         disk_path = rotor_path(inputs["disks"], name)
@@ -49,14 +55,17 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
                                                   "samples_per_rev": samples}, len(observers), len(rotors)),
                      f"{outputs['signals']}: {len(observers)} observers x {samples} samples per revolution")
         hinge = float(params["hinge_offsets_m"][name])
+        phase_deg = float(phases_deg[name])
         try:
-            pressure = radiate_rotor(disk, trim_row(trim, name, str(inputs["trim"])), obs, grid, thickness=model, hinge_offset_m=hinge)
+            pressure = radiate_rotor(disk, trim_row(trim, name, str(inputs["trim"])), obs, grid, thickness=model, hinge_offset_m=hinge,
+                                     phase_rad=math.radians(phase_deg))
         except AcousticsError as exc:
             raise AcousticsError(f"{disk_path} / {inputs['observers']}: {exc}") from None
         table = signals_table(observers["observer"].to_numpy(), (LOADING, THICKNESS), pressure, grid, total=False)
         meta = {"aircraft": params["aircraft"], "segment": params["segment"], "obsset": params["obsset"],
                 "variant": params["variant"], "rotor": name, "reference_rotor": rotors[0], "samples_per_rev": samples,
                 "thickness": model.kind, "chord_fractions": list(model.chord_fractions), "hinge_offset_m": hinge,
+                **({"phase_deg": phase_deg} if phase_deg else {}),
                 "inputs": [str(disk_path), str(inputs["trim"]), str(inputs["observers"])]}
         write_table(table, rotor_path(outputs["signals"], name), stage="acoustics", metadata=meta)
         report += [f"rotor {name} {group}: p_Pa min {pressure[:, g].min():.6g}, max {pressure[:, g].max():.6g}, "

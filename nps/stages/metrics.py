@@ -14,7 +14,9 @@ relative_humidity_pct), ``broadband`` (``pegg``, ``bpm`` or ``none``; true/false
 validated aircraft-configuration entry), ``aircraft``, ``segment``, ``obsset``, ``variant``.
 Pegg outside its helicopter main-rotor data range, and BPM on elements outside RP-1218's, are reported
 as warnings (stderr and the report). ``rotor_configs`` (rotor → validated rotor configuration) is also
-used for Pegg's validity checks; optional ``allow_outside_validity``.
+used for Pegg's validity checks; optional ``allow_outside_validity``; optional ``tone_sum`` (the aircraft
+schema's ``tone_sum``: ``coherent`` or ``incoherent``, how the rotors' tones add; without it ``coherent``),
+recorded in the metadata when ``incoherent``.
 
 Before computing: provenance of every input, every observer in every rotor's signals, memory, and
 with Pegg broadband its peak frequency and mean lift coefficient (nps.app.validity.broadband_findings).
@@ -36,7 +38,7 @@ from nps.app.io import artifact_rows, check_provenance, read_signals, read_table
 from nps.noise.metrics import STUDY_BANDS, metrics_tables
 from nps.noise.observers import OBSERVER_STAGES
 from nps.app.resources import check_memory, estimate_bytes
-from nps.noise.signals import check_observers
+from nps.noise.signals import TONE_SUMS, check_observers
 from nps.rotor.trim import TRIM_STAGES, trim_row
 
 
@@ -105,11 +107,13 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
         bpm_msp, notes = _bpm_band_msp(inputs, params, trim, observers, state)
     for note in notes:
         warnings.warn(note)
+    tone_sum = params["tone_sum"] if "tone_sum" in params else TONE_SUMS[0]
     table, bands, levels = metrics_tables(signals, observers, trim, params["solidity"], atmosphere, hsi,
-                                          model != "none", harmonics, bpm_msp)
+                                          model != "none", harmonics, bpm_msp, tone_sum)
     meta = {"aircraft": params["aircraft"], "segment": params["segment"], "obsset": params["obsset"],
             "variant": params["variant"], "bvispl_harmonics": list(harmonics), "absorption": params["absorption"],
-            "broadband": params["broadband"], "hsi": hsi is not None, **recorded}
+            "broadband": params["broadband"], "hsi": hsi is not None,
+            **({"tone_sum": tone_sum} if tone_sum != TONE_SUMS[0] else {}), **recorded}
     write_table(table, outputs["metrics"], stage="metrics", metadata=meta)
     write_table(bands, outputs["bands"], stage="metrics", metadata=meta)
     if "figure" in outputs:
