@@ -52,11 +52,12 @@ def _observers() -> pd.DataFrame:
     return points([[20.0, 5.0, -3.0], [-6.0, -15.0, -8.0], [8.0, 3.0, -12.0], [0.0, 25.0, 1.0]])
 
 
-def _signals(tmp_path, disk, phases_deg=None, name="out"):
-    """Run the acoustics stage for rotors a, b (same disk, same hub); return the signals directory."""
+def _signals(tmp_path, disk, phases_deg=None, name="out", trim=None):
+    """Run the acoustics stage for rotors a, b (same disk, same hub; trim rows ``trim``, default :func:`_trim`);
+    return the signals directory."""
     for rotor in ("a", "b"):
         write_table(disk, rotor_path(tmp_path / "disks", rotor), stage="loads", metadata={"aircraft": "x", "segment": "s", "rotor": rotor})
-    write_table(_trim(), tmp_path / "trim.parquet", stage="trim", metadata={"aircraft": "x", "segment": "s"})
+    write_table(_trim() if trim is None else trim, tmp_path / "trim.parquet", stage="trim", metadata={"aircraft": "x", "segment": "s"})
     write_table(_observers(), tmp_path / "obs.parquet", stage="observers", metadata={"aircraft": "x", "segment": "s", "obsset": "o"})
     params = {"rotors": ["a", "b"], "hinge_offsets_m": {"a": 0.0, "b": 0.0}, "thickness": "dual_compact",
               "chord_fractions": [0.13, 0.87], "samples_per_rev": SAMPLES, "aircraft": "x", "segment": "s", "obsset": "o",
@@ -180,3 +181,25 @@ def test_schema_defaults_and_a_bad_tone_sum(tmp_path, repo_root):
     (tmp_path / "bad.yaml").write_text(text)
     with pytest.raises(ConfigError, match=r"bad.yaml: tone_sum: expected one of \['coherent', 'incoherent'\]"):
         load_aircraft(tmp_path / "bad.yaml")
+
+
+def test_a_rotor_turning_half_a_percent_faster_adds_3_01_db_incoherently(tmp_path, disk):
+    """A speed offset (rotor b at 1.005 Ω: its own omega_rad_s, or the segment's rotor_omega_scale) on the reference
+    rotor's one-revolution grid: the incoherent OASPL is the energy sum of the two rotors' OASPL (exact: Parseval
+    per rotor record), +3.01 dB over rotor a within 0.1 dB (b is 0.05-0.06 dB louder at its higher speed); b's own
+    BPF1 level (least-squares tones) is above a's by less than the Ω³ scaling."""
+    trim = _trim()
+    trim.loc[trim["rotor"] == "b", "omega_rad_s"] = 1.005 * OMEGA
+    offset = _signals(tmp_path, disk, name="offset", trim=trim)
+    signals = {rotor: read_table(rotor_path(offset, rotor)) for rotor in ("a", "b")}
+    observers = _observers().assign(elevation_deg=0.0, azimuth_deg=0.0)
+    both, _, _ = metrics_tables(signals, observers, trim, {"a": 0.05, "b": 0.05}, None, broadband_on=False,
+                                tone_sum="incoherent")
+    one, _, _ = metrics_tables({"a": signals["a"]}, observers, trim.iloc[:1], {"a": 0.05}, None, broadband_on=False)
+    alone, _, _ = metrics_tables({"b": signals["b"]}, observers, trim.iloc[1:], {"b": 0.05}, None, broadband_on=False)
+    energy = 10.0 * np.log10(10.0 ** (one["oaspl_db"] / 10.0) + 10.0 ** (alone["oaspl_db"] / 10.0))
+    np.testing.assert_allclose(both["oaspl_db"], energy, atol=1e-9)
+    np.testing.assert_allclose(both["oaspl_db"] - one["oaspl_db"], THREE_DB, atol=0.1)  # b is louder by its speed
+    table = _tones(tmp_path, offset, "incoherent")
+    louder = _levels(table, "b")[:, 0] - _levels(table, "a")[:, 0]  # 0.10-0.12 dB: ≈ Ω^2.5 at the same loads
+    assert (louder > 0.0).all() and (louder < 20.0 * np.log10(1.005**3)).all()
