@@ -269,7 +269,9 @@ def load_aircraft(path: str | Path) -> dict:
                                                           f"frame: x forward, y port, z up), got {rotor['thrust_axis_body']}"))
         problems += _rotor_sections(rotor, where, Path(path).parent)
     if not problems:  # the rotors' geometry (blade tables resolved) is readable
-        problems += _hub_problems(data["rotors"])
+        problems += solidity_problems(data["rotors"]) or _hub_problems(data["rotors"])
+    if not problems:
+        problems += disk_crossing_problems(data["rotors"])
     if not any(rotor["role"] == "lift" for rotor in data["rotors"]):
         problems.append(("rotors", "expected at least one rotor with role 'lift'"))
     if sum(rotor["role"] == "antitorque" for rotor in data["rotors"]) > 1:
@@ -302,6 +304,86 @@ def _hub_problems(rotors: list[dict]) -> list[tuple[str, str]]:
                     f"hub {rotor['hub_position_m']} lies inside the disk swept by rotor '{other['name']}' "
                     f"({in_plane:.3g} m from its hub in its plane, radius {other['radius_m']} m; {abs(axial):.3g} m along its axis, "
                     f"chord {chords[i]:.3g} m): expected the hub outside the other rotors' blade paths")))
+    return problems
+
+
+SOLIDITY_MAX = 0.5  # blade spacing 2π(0.75 R)/N of at least 3 chords: isolated blade sections (no cascade)
+FLAP_MARGIN_RAD = math.radians(15.0)  # nps.app.validity.FLAP_ANGLE_MAX_RAD: the largest flap angle accepted
+
+
+def solidity_problems(rotors: list[dict], prefix: str = "rotors") -> list[tuple[str, str]]:
+    """Rotors whose solidity N c/(π R) exceeds :data:`SOLIDITY_MAX`: blades closer than 3 chords at 75 %
+    radius are a cascade, not the isolated sections of blade element theory (a blade count or chord typo);
+    the message names that rotor (not the rotor whose trim would fail later)."""
+    from nps.rotor.geometry import RotorGeometry
+
+    problems = []
+    for index, rotor in enumerate(rotors):
+        geometry = RotorGeometry.from_config(rotor)
+        if geometry.solidity > SOLIDITY_MAX:
+            problems.append((f"{prefix}[{index}]", (
+                f"rotor '{rotor['name']}': {geometry.n_blades} blades of chord {geometry.chord_m:.4g} m on radius "
+                f"{geometry.radius_m:.4g} m give solidity N c/(pi R) = {geometry.solidity:.3g}: expected <= {SOLIDITY_MAX:g} "
+                f"(blades at least 3 chords apart at 75 % radius); check n_blades and chord_m")))
+    return problems
+
+
+def _disk_frame(rotor: dict):
+    """(hub (3,), unit thrust axis (3,)) of a rotor in the body frame."""
+    import numpy as np
+
+    axis = np.asarray(rotor["thrust_axis_body"], dtype=float)
+    return np.asarray(rotor["hub_position_m"], dtype=float), axis / np.linalg.norm(axis)
+
+
+def _swept_points(rotor: dict, n_azimuth: int = 72, n_radius: int = 8):
+    """Points (n, 3, body frame) of the volume a rotor's blades sweep: the disk up to the tip, each radius r
+    displaced by ± r sin(FLAP_MARGIN_RAD) along the axis (the largest flapping accepted)."""
+    import numpy as np
+
+    hub, axis = _disk_frame(rotor)
+    e1 = np.cross(axis, [0.0, 1.0, 0.0] if abs(axis[1]) < 0.9 else [1.0, 0.0, 0.0])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(axis, e1)
+    psi = np.linspace(0.0, 2.0 * np.pi, n_azimuth, endpoint=False)
+    r = np.linspace(0.0, float(rotor["radius_m"]), n_radius + 1)[1:]
+    rr, pp = np.meshgrid(r, psi, indexing="ij")
+    base = hub + rr.reshape(-1, 1) * (np.cos(pp).reshape(-1, 1) * e1 + np.sin(pp).reshape(-1, 1) * e2)
+    lift = (rr.reshape(-1, 1) * math.sin(FLAP_MARGIN_RAD)) * axis
+    return np.concatenate([base - lift, base, base + lift])
+
+
+def disk_crossing_problems(rotors: list[dict]) -> list[tuple[str, str]]:
+    """Rotors other than lift rotors (a tail rotor) whose swept volume (:func:`_swept_points`, flapping margin
+    included) enters another rotor's: within its radius and within r sin(15°) + c/2 of its plane at radius r.
+    The rotor blamed is the non-lift one (it is placed relative to the lift rotors). Pairs of lift rotors
+    (tandem overlap, coaxial stacks) are designed with phased or stacked blade paths and keep the hub check."""
+    import numpy as np
+
+    from nps.rotor.geometry import RotorGeometry
+
+    problems = []
+    for j, rotor in enumerate(rotors):
+        if rotor["role"] == "lift":
+            continue
+        points = _swept_points(rotor)
+        for other in rotors:
+            if other is rotor:
+                continue
+            hub, axis = _disk_frame(other)
+            rel = points - hub
+            axial = rel @ axis
+            radial = np.linalg.norm(rel - np.outer(axial, axis), axis=1)
+            margin = radial * math.sin(FLAP_MARGIN_RAD) + RotorGeometry.from_config(other).chord_m / 2.0
+            inside = (radial <= other["radius_m"]) & (np.abs(axial) <= margin)
+            if inside.any():
+                k = int(np.argmax(inside))
+                problems.append((f"rotors[{j}]", (
+                    f"the disk rotor '{rotor['name']}' sweeps (radius_m {rotor['radius_m']}, hub_position_m "
+                    f"{rotor['hub_position_m']}, flapping margin ±15°) crosses the blade path of rotor '{other['name']}': "
+                    f"a point {radial[k]:.3g} m from its axis (radius {other['radius_m']} m), {axial[k]:.3g} m from its "
+                    f"plane (margin {margin[k]:.3g} m); expected the disks apart: check rotor '{rotor['name']}' "
+                    f"radius_m (a radius in feet?) and hub_position_m")))
     return problems
 
 
@@ -338,6 +420,11 @@ def load_observer_sets(path: str | Path) -> dict:
     problems += _schema_problems(jsonschema.Draft202012Validator(schema), sets)
     _raise(path, problems)
     _raise(path, observer_set_problems(data["observer_sets"]))
+    from nps.app.resources import OBSERVERS_BYTES_PER_OBSERVER, memory_problems, observer_count
+
+    counts = {name: observer_count(spec) for name, spec in data["observer_sets"].items()}
+    _raise(path, memory_problems([(f"observer_sets.{name}", f"the observer table of {n:,} observers",
+                                   OBSERVERS_BYTES_PER_OBSERVER * n) for name, n in counts.items()]))
     return fill_defaults(data["observer_sets"], node)
 
 
@@ -427,6 +514,21 @@ def broadband_model(value) -> str:
     if value not in BROADBAND_MODELS:
         raise ValueError(f"models.broadband: expected one of {list(BROADBAND_MODELS)} (or true/false), got {value!r}")
     return str(value)
+
+
+BROADBAND_AUTO = "auto"  # per rotor: BPM outside Pegg's data range, Pegg inside (docs/decisions, broadband auto)
+
+
+def rotor_broadband_models(value, trim, rotors) -> dict[str, str]:
+    """Rotor → broadband model (``pegg``, ``bpm``, ``none``) of one aircraft in one segment: the model
+    ``value`` names (:func:`broadband_model`) for every rotor, or for ``auto`` (:data:`BROADBAND_AUTO`)
+    BPM for each rotor of the trim table ``trim`` outside Pegg's data range
+    (:func:`nps.app.validity.pegg_range_notes`) and Pegg for the others."""
+    if value != BROADBAND_AUTO:
+        return {name: broadband_model(value) for name in rotors}
+    from nps.app.validity import pegg_range_notes
+
+    return {name: "bpm" if pegg_range_notes(trim, [name]) else "pegg" for name in rotors}
 
 
 @dataclass(frozen=True)
@@ -568,6 +670,7 @@ def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", 
                 problems.append((f"observer_sets.{set_name}.segments[{index}]", f"expected one of {all_ids}, got '{segment_id}'"))
     problems += _footprint_problems(config, mission, all_ids)
     _raise(config_file, problems)
+    _raise(config_file, campaign_memory_problems(config, aircraft))
     for index, segment in enumerate(mission["segments"]):
         if segment["id"] not in segments:
             continue
@@ -586,6 +689,17 @@ def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", 
                     ))
     _raise(mission_path, problems)
     return Campaign(config=config, aircraft=aircraft, mission=mission, segments=list(segments), written=written)
+
+
+def campaign_memory_problems(config: dict, aircraft: dict[str, dict]) -> list[tuple[str, str]]:
+    """Jobs of the campaign that cannot fit in the memory available, from the configuration alone
+    (:func:`nps.app.resources.campaign_estimates`; the largest aircraft's rotor count): refused before the
+    first job instead of inside it (or by the kernel)."""
+    from nps.app.resources import campaign_estimates, memory_problems
+
+    n_rotors = max((len(a["rotors"]) for a in aircraft.values()), default=1)
+    hsi = bool(config["models"]["hsi"])
+    return memory_problems(campaign_estimates(config["resolution"], config["observer_sets"], n_rotors, hsi))
 
 
 def rig_schema() -> dict:
@@ -615,7 +729,7 @@ def load_rig(path: str | Path) -> dict:
     ``settings`` (:func:`rig_settings`).
     """
     from nps.noise.observers import ObserverError
-    from nps.rig.case import microphone_positions, rotor_for_rig
+    from nps.rig.case import control_conflicts, microphone_positions, rotor_for_rig
 
     path = Path(path)
     schema = rig_schema()
@@ -633,9 +747,11 @@ def load_rig(path: str | Path) -> dict:
         rotor = rotor_for_rig(aircraft_rotor(load_aircraft(rotor_file), ref["name"], rotor_file), data["condition"])
     _raise(rotor_file, [(f"rotor '{rotor['name']}'{field[len('rotor'):]}", what)
                         for field, what in _rotor_sections(rotor, "rotor", rotor_file.parent)])
+    _raise(rotor_file, [("rotor", what) for _, what in solidity_problems([rotor])])
     mode = rotor["control"]
     if mode != "fixed" and "thrust_N" not in data["condition"]:
         _raise(path, [("condition.thrust_N", f"required with control '{mode}' (the thrust target)")])
+    _raise(path, control_conflicts(mode, {**data["condition"], "flapping": rotor["flapping"]}))
     try:
         positions, groups = microphone_positions(data["microphones"], base)
     except ObserverError as exc:

@@ -162,9 +162,10 @@ def _json_default(value):
 
 
 def read_table(path: str | os.PathLike, required: tuple[str, ...] = (), nonempty: bool = False,
-               finite: bool = False) -> pd.DataFrame:
+               finite: bool = False, unique: str | None = None) -> pd.DataFrame:
     """Read an artifact; raise :class:`ArtifactError` naming missing ``required`` columns, a table
-    without rows (``nonempty``) or NaN/inf in a float column (``finite``: inputs from other tools)."""
+    without rows (``nonempty``), NaN/inf in a float column (``finite``: inputs from other tools) or a
+    value repeated in the column ``unique`` (e.g. the observer ids)."""
     path = Path(path)
     if not path.is_file():
         raise ArtifactError(f"{path}: artifact not found" if not path.exists() else f"{path}: expected a Parquet file")
@@ -179,6 +180,10 @@ def read_table(path: str | os.PathLike, required: tuple[str, ...] = (), nonempty
         raise ArtifactError(f"{path}: the table has no rows")
     if finite:
         check_finite(df, str(path))
+    if unique is not None and unique in df.columns and df[unique].duplicated().any():
+        repeated = df[unique][df[unique].duplicated()].unique()[:5].tolist()
+        raise ArtifactError(f"{path}: {unique}: expected unique ids, {repeated} repeat "
+                            f"({df[unique].nunique()} distinct in {len(df)} rows)")
     return df
 
 

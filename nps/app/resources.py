@@ -126,6 +126,45 @@ def estimate_bytes(stage: str, resolution: Mapping, n_observers: int = 1, n_roto
     raise ValueError(f"estimate_bytes: stage '{stage}' has no estimate; expected loads, wake, acoustics, hsi or metrics")
 
 
+OBSERVERS_BYTES_PER_OBSERVER = 400.0  # observer table: 9 float columns + directions, with pandas' copies (not measured)
+CAMPAIGN_STAGES = ("loads", "wake", "acoustics", "hsi", "metrics")
+
+
+def campaign_estimates(resolution: Mapping, observer_sets: Mapping[str, Mapping], n_rotors: int, hsi: bool = False
+                       ) -> list[tuple[str, str, float]]:
+    """(field, what, bytes) of every job a campaign plans, from its configuration alone: the loads and wake
+    jobs of ``resolution``, and per observer set the observer table, acoustics, HSI (``hsi``) and metrics jobs
+    of an aircraft with ``n_rotors`` rotors (the campaign's largest)."""
+    out = [("resolution", f"loads on a {resolution['n_psi']} x {resolution['n_r']} disk",
+            estimate_bytes("loads", resolution, n_rotors=n_rotors)),
+           ("resolution", f"wake and BVI loads on a {resolution['n_psi']} x {resolution['n_r']} disk with "
+                          f"{resolution['wake_revolutions']} wake revolutions",
+            estimate_bytes("wake", resolution, n_rotors=n_rotors))]
+    for name, spec in observer_sets.items():
+        n = observer_count(spec)
+        what = f"{n:,} observers x {resolution['samples_per_rev']} samples per revolution x {n_rotors} rotors"
+        out.append((f"observer_sets.{name}", f"the observer table of {n:,} observers", OBSERVERS_BYTES_PER_OBSERVER * n))
+        for stage in ("acoustics", "hsi", "metrics") if hsi else ("acoustics", "metrics"):
+            out.append((f"observer_sets.{name}", f"{stage} of {what}", estimate_bytes(stage, resolution, n, n_rotors, hsi)))
+    return out
+
+
+def memory_problems(estimates, available: float | None = None) -> list[tuple[str, str]]:
+    """[(field, problem)] of the first field (in the order of ``estimates``, :func:`campaign_estimates`: the
+    resolution before the observer sets) with an estimate whose interpreter + bytes exceed the memory
+    available (default :func:`available_bytes`), its largest, with the number of other such fields; [] when
+    all fit."""
+    have = available_bytes() if available is None else float(available)
+    over = [e for e in estimates if INTERPRETER_BYTES + e[2] > have]
+    if not over:
+        return []
+    field, what, need = max((e for e in over if e[0] == over[0][0]), key=lambda e: e[2])
+    others = len({e[0] for e in over}) - 1
+    more = f" ({others} other field(s) too)" if others else ""
+    return [(field, f"{what} needs an estimated {(INTERPRETER_BYTES + need) / 1e6:,.0f} MB, {have / 1e6:,.0f} MB "
+                    f"available: expected a job that fits in memory; lower the resolution or the observer count{more}")]
+
+
 def observer_count(spec: Mapping) -> int:
     """Number of observers of an ``observer_sets.<name>`` entry of the campaign config."""
     kind = spec.get("kind")

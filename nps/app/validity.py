@@ -16,14 +16,14 @@ the free stream goes down through the disk, i.e. in climb).
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from typing import Iterable, Mapping, Sequence
 
 import numpy as np
 import pandas as pd
 
 from nps.rotor.bet import MAX_CONTROL_RAD
-from nps.noise.broadband.pegg import peak_frequency_hz
+from nps.noise.broadband.pegg import peak_frequency_hz, pegg_outside_range
 from nps.noise.metrics import STUDY_BANDS
 from nps.rotor.airfoils import LinearAirfoil
 from nps.rotor.geometry import RotorGeometry
@@ -66,6 +66,12 @@ OBSERVER_RADIUS_SOURCE = ("observer outside the sphere holding the blades: the a
                           "a medium at rest (Farassat, NASA/TM-2007-214853), Pegg's level a far-field 1/r^2 law "
                           "(NASA TM-80200)")
 PEGG_SOURCE = "Pegg, NASA TM-80200 (1979), eq. 3.1-3.3 (thesis)"
+DENSITY_RANGE_KG_M3 = (0.05, 10.0)
+SPEED_OF_SOUND_RANGE_MPS = (100.0, 600.0)
+INCOMPRESSIBLE_SPEED_OF_SOUND_MPS = 1.0e6  # and above: a deliberate incompressible limit (closed-form rig checks)
+ATMOSPHERE_SOURCE = ("plausible gas: air from the ISA at 11 km (0.36 kg/m^3, 295 m/s) to cold sea level (1.55 kg/m^3), "
+                     "heavy-gas wind tunnels (R-134a, about 4 kg/m^3 and 165 m/s) included; outside, a unit error "
+                     "(g/m^3, km/s) is likely (NPS choice, docs/reference/validity.md)")
 
 
 class ValidityError(ValueError):
@@ -195,6 +201,21 @@ def check_lock_number(lock_number: float, name: str, stage: str = "config") -> F
                    LOCK_NUMBER_SOURCE, stage)
 
 
+def check_atmosphere(density_kg_m3: float, speed_of_sound_mps: float, where: str = "atmosphere",
+                     stage: str = "config") -> list[Finding]:
+    """Density within 0.05-10 kg/m³ and speed of sound within 100-600 m/s (a gas a rotor can run in); a
+    speed of sound of at least :data:`INCOMPRESSIBLE_SPEED_OF_SOUND_MPS` is the incompressible limit of
+    closed-form checks, not a unit error, and passes."""
+    out = []
+    for key, value, (low, high) in (("density_kg_m3", density_kg_m3, DENSITY_RANGE_KG_M3),
+                                    ("speed_of_sound_mps", speed_of_sound_mps, SPEED_OF_SOUND_RANGE_MPS)):
+        if key == "speed_of_sound_mps" and math.isfinite(value) and value >= INCOMPRESSIBLE_SPEED_OF_SOUND_MPS:
+            continue
+        if not (math.isfinite(value) and low <= value <= high):
+            out.append(Finding(f"{where}.{key}", float(value), f"within [{low:g}, {high:g}]", ATMOSPHERE_SOURCE, stage))
+    return out
+
+
 def check_flap_angle(beta0_rad: float, beta1c_rad: float, beta1s_rad: float, name: str,
                      stage: str = "loads") -> Finding | None:
     """Largest flap angle |β0| + √(β1c² + β1s²) ≤ 15°."""
@@ -319,6 +340,15 @@ def aircraft_findings(aircraft: Mapping, speed_of_sound_mps: float,
     return [f for f in out if f is not None]
 
 
+def _rpm_hint(found: Finding | None, rotor: Mapping, row: Mapping) -> Finding | None:
+    """A blade-loading finding of an ``rpm``-controlled rotor with the solved speed and the pitch that set it."""
+    if found is None or rotor["control"] != "rpm":
+        return found
+    return replace(found, quantity=f"{found.quantity} (control rpm: solved omega_rad_s {row['omega_rad_s']:.4g} at "
+                                   f"pitch_deg {rotor['pitch_deg']:g}; a smaller pitch_deg turns the rotor faster at a "
+                                   f"lower C_T/sigma)")
+
+
 def trim_findings(aircraft: Mapping, trim: pd.DataFrame) -> list[Finding]:
     """After the aircraft trim (table of ``nps.rotor.trim.trim_aircraft``): advance ratio, advancing-tip
     Mach number, blade loading, mean lift coefficient and vortex-ring state of every rotor."""
@@ -329,7 +359,7 @@ def trim_findings(aircraft: Mapping, trim: pd.DataFrame) -> list[Finding]:
         out += [
             check_advance_ratio(mu, name),
             check_tip_mach_advancing(row["tip_mach"], mu, name, _foil(rotor, "mach_cap")),
-            check_blade_loading(row["ct"], sigma, name),
+            _rpm_hint(check_blade_loading(row["ct"], sigma, name), rotor, row),
             check_mean_lift_coefficient(row["ct"], sigma, _foil(rotor, "cl_max"), name),
             check_vortex_ring(mu, row["mu_z"], row["ct"], name),
         ]
@@ -397,3 +427,40 @@ def broadband_findings(aircraft: Mapping, trim: pd.DataFrame) -> list[Finding]:
             check_mean_lift_coefficient(row["ct"], _solidity(rotor), _foil(rotor, "cl_max"), name, stage="metrics"),
         ]
     return [f for f in out if f is not None]
+
+
+def rig_condition_findings(rotor: Mapping, op, control_mode: str) -> list[Finding]:
+    """Before a rig's rotor solve (stage ``rig``): the atmosphere, hover tip Mach and Lock number, and,
+    where the rotor speed is not trimmed (``collective``, ``fixed``), the advance ratio and advancing-tip
+    Mach number of the tunnel speed. ``op``: the rig's :class:`nps.rotor.geometry.OperatingPoint`."""
+    name = rotor["name"]
+    out = check_atmosphere(op.density_kg_m3, op.speed_of_sound_mps, "condition.atmosphere", stage="rig")
+    if out:  # a speed of sound in km/s makes every Mach number below meaningless
+        return out
+    out += aircraft_findings({"rotors": [{**rotor, "omega_rad_s": op.omega_rad_s}]}, op.speed_of_sound_mps)
+    if control_mode != "rpm":
+        mu = math.hypot(op.mu_x, op.mu_y)
+        out += [check_advance_ratio(mu, name, stage="rig"),
+                check_tip_mach_advancing(op.omega_rad_s * RotorGeometry.from_config(rotor).radius_m / op.speed_of_sound_mps,
+                                         mu, name, _foil(rotor, "mach_cap"), stage="rig")]
+    return [f for f in out if f is not None]
+
+
+def rig_findings(rotor: Mapping, trim: pd.DataFrame, summary: pd.DataFrame, microphones: pd.DataFrame) -> list[Finding]:
+    """After a rig's rotor solve, before its artifacts: the trim checks (:func:`trim_findings`), flap angle and
+    controls of the solved rotor (:func:`loads_findings` of ``summary``, ``RotorTrim.summary()``) and the
+    microphones against the blade path and hub (:func:`observer_findings`; they move with the hub)."""
+    one = {"rotors": [rotor]}
+    return trim_findings(one, trim) + loads_findings(rotor["name"], summary) + observer_findings(microphones, one, trim)
+
+
+def pegg_range_notes(trim: pd.DataFrame, rotors: Sequence[str]) -> list[str]:
+    """Pegg's data-range warnings of the ``rotors`` in a trim table (radius, tip speed, thrust outside his
+    helicopter main rotors', :func:`nps.noise.broadband.pegg.pegg_outside_range`), each suggesting BPM."""
+    out = []
+    for _, row in trim[trim["rotor"].isin(list(rotors))].iterrows():
+        tip_speed = float(row["omega_rad_s"]) * float(row["radius_m"])
+        out += [f"Pegg: rotor '{row['rotor']}': {m}; consider models.broadband: bpm (BPM blade self-noise, "
+                f"docs/reference/bpm.md), which holds for any rotor"
+                for m in pegg_outside_range(float(row["radius_m"]), tip_speed, float(row["thrust_N"]))]
+    return out

@@ -90,21 +90,44 @@ def ground(args: argparse.Namespace) -> dict:
     return {field: getattr(args, f"ground_{field}") for field in GROUND_OPTIONS}
 
 
+def same_path_problem(inputs: dict, outputs: dict) -> str | None:
+    """The first output that would overwrite an input: an output path equal to an input path, or an
+    existing output file inside an input directory. ``inputs``/``outputs`` map a name (option or stage
+    key) to a path; None values are skipped. Returns the one-line problem or None."""
+    from pathlib import Path
+
+    read = {name: Path(path).resolve() for name, path in inputs.items() if path is not None}
+    for out_name, out_path in outputs.items():
+        if out_path is None:
+            continue
+        target = Path(out_path).resolve()
+        for in_name, source in read.items():
+            if target == source:
+                return (f"{out_name} {out_path}: is the input {in_name} {inputs[in_name]}: expected an output path "
+                        f"that is no input (writing would overwrite it)")
+            if target.is_file() and source.is_dir() and source in target.parents:
+                return (f"{out_name} {out_path}: lies in the input directory {in_name} {inputs[in_name]} and exists: "
+                        f"expected an output path outside the inputs (writing would overwrite an input)")
+    return None
+
+
 def run_stage(stage: str, inputs: dict, outputs: dict, params: dict, debug: bool = False,
-              allow_outside_validity: bool = False) -> int:
+              allow_outside_validity: bool = False, sources: dict | None = None) -> int:
     """Run ``nps.stages.<stage>.run``; print its report; expected errors → one line and exit status 2.
-    ``allow_outside_validity``: the campaign switch, passed to the stage as a param when set."""
+    ``allow_outside_validity``: the campaign switch, passed to the stage as a param when set.
+    ``sources``: option → file the command read itself (configuration files); no output may be an input
+    (:func:`same_path_problem`) or one of them."""
+    clash = same_path_problem({**inputs, **(sources or {})}, outputs)
+    if clash:
+        return fail(clash)
     if allow_outside_validity:
         params = {**params, "allow_outside_validity": True}
     from nps.stages import stage_function
-
-    from nps.rotor.bet import TrimError
-    from nps.app.resources import ResourceError
-    from nps.rotor.trim import AircraftTrimError
+    from nps.stages.job import expected_errors
 
     try:
         report = stage_function(stage)(inputs, outputs, params)
-    except (ValueError, KeyError, OSError, ResourceError, TrimError, AircraftTrimError) as error:
+    except expected_errors() as error:
         if debug:
             raise
         message = error.args[0] if isinstance(error, KeyError) and error.args else error

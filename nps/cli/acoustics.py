@@ -44,4 +44,4 @@ def main(argv: list[str]) -> int:
               "segment": provenance(args.trim, "segment"), "obsset": provenance(args.observers, "obsset"),
               "variant": args.variant or ("bvi" if provenance(f"{args.disks}/{names[0]}.parquet", "stage") == "bvi" else "base")}
     inputs = {"disks": args.disks, "trim": args.trim, "observers": args.observers}
-    return run_stage("acoustics", inputs, {"signals": args.out_dir}, params, args.debug)
+    return run_stage("acoustics", inputs, {"signals": args.out_dir}, params, args.debug, sources={"--aircraft": args.aircraft})

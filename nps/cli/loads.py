@@ -31,5 +31,5 @@ def main(argv: list[str]) -> int:
     params = {"rotors": rotors, "n_psi": args.n_psi, "n_r": args.n_r, "aircraft": aircraft["name"],
               "segment": provenance(args.trim, "segment")}
     return run_stage("loads", {"trim": args.trim}, {"loads": args.out_dir}, params, args.debug,
-                     args.allow_outside_validity)
+                     args.allow_outside_validity, sources={"--aircraft": args.aircraft})
 

@@ -60,4 +60,4 @@ def main(argv: list[str]) -> int:
               **({"disks": args.disks} if args.disks else {})}
     outputs = {"metrics": args.out, "bands": args.bands_out, **({"figure": args.figure} if args.figure else {})}
     return run_stage("metrics", inputs, outputs, params, args.debug,
-                     args.allow_outside_validity)
+                     args.allow_outside_validity, sources={"--aircraft": args.aircraft})

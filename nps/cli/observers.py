@@ -30,4 +30,4 @@ def main(argv: list[str]) -> int:
               "rotors": {r["name"]: r for r in aircraft["rotors"]},
               "aircraft": aircraft["name"], "segment": provenance(args.trim, "segment"), "obsset": args.set}
     return run_stage("observers", {"trim": args.trim}, {"observers": args.out}, params, args.debug,
-                     args.allow_outside_validity)
+                     args.allow_outside_validity, sources={"--config": args.config, "--aircraft": args.aircraft})

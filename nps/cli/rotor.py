@@ -19,7 +19,7 @@ from pathlib import Path
 
 import yaml
 
-from nps.cli import default, fail, option, parser, run_stage
+from nps.cli import default, fail, option, parser, run_stage, same_path_problem
 from nps.core.atmosphere import isa
 
 N_HARMONICS = 5  # BPF harmonics listed in the printed table and levels.csv (an output choice, no rig field)
@@ -84,29 +84,63 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--out-dir", required=True, help="output directory")
     args = ap.parse_args(argv)
     out = Path(args.out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    if args.rig:
-        rig_file = Path(args.rig)
-    else:
+    rig_file = Path(args.rig) if args.rig else out / "rotor.yaml"
+    inputs = {"--rig": args.rig, "--rotor-file": args.rotor_file, "--aircraft": args.aircraft, "--mic-file": args.mic_file}
+    clash = same_path_problem({k: v for k, v in inputs.items() if v}, {"--out-dir": out, "--out-dir rotor.yaml": rig_file}
+                              if not args.rig else {"--out-dir": out})
+    if clash:
+        return fail(clash)
+    rig = None
+    if not args.rig:
         try:
             rig = _rig_from_options(args)
         except ValueError as error:
             return fail(str(error))
-        rig_file = out / "rotor.yaml"
+    created = [d for d in (out, *out.parents) if not d.exists()]
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        return fail(f"--out-dir {out}: {error.strerror} (a file is where the output directory must go)")
+    if rig is not None:
         rig_file.write_text(yaml.safe_dump(rig, sort_keys=False))
-    return run_rig(rig_file, out, args.harmonics, args.debug)
+    status = run_rig(rig_file, out, args.harmonics, args.debug, options=rig is not None)
+    if status:  # refused before any artifact: leave nothing behind
+        if rig is not None:
+            rig_file.unlink(missing_ok=True)
+        for d in created:
+            if d.is_dir() and not any(d.iterdir()):
+                d.rmdir()
+    return status
 
 
-def run_rig(rig_file: Path, out: Path, n_harmonics: int, debug: bool = False) -> int:
+# rig fields the options set -> the option (the messages of a rig built from the options name the option)
+OPTION_OF_FIELD = {"condition.thrust_N": "--thrust-n", "condition.pitch_deg": "--pitch-deg", "condition.rpm": "--rpm",
+                   "condition.omega_rad_s": "--omega-rad-s", "condition.atmosphere.density_kg_m3": "--density-kg-m3",
+                   "condition.atmosphere.speed_of_sound_mps": "--speed-of-sound-mps",
+                   "condition.tunnel_speed_mps": "--speed-mps", "condition.shaft_angle_deg": "--shaft-angle-deg"}
+
+
+def option_names(message: str) -> str:
+    """``message`` with the rig fields set by options followed by their option (``condition.thrust_N`` →
+    ``condition.thrust_N (--thrust-n)``)."""
+    for field, flag in OPTION_OF_FIELD.items():
+        if field in message and flag not in message:
+            message = message.replace(field, f"{field} ({flag})", 1)
+    return message
+
+
+def run_rig(rig_file: Path, out: Path, n_harmonics: int, debug: bool = False, options: bool = False) -> int:
     """Set-up, loads and acoustics of ``rig_file`` into ``out`` with the rig's settings (as the workflow's
-    jobs of aircraft ``rigs``, segment NAME); print the loads and the levels."""
+    jobs of aircraft ``rigs``, segment NAME); print the loads and the levels. The set-up (stage ``rig``)
+    applies every check of the three stages before it writes (nps.stages.rig). ``options``: the rig was
+    built from the options (messages name them)."""
     from nps.app.config import ConfigError, load_rig
     from nps.rig.case import RIG_AIRCRAFT
 
     try:
         rig = load_rig(rig_file)
     except ConfigError as error:
-        return fail(str(error))
+        return fail(option_names(str(error)) if options else str(error))
     rotor, settings = rig["rotor_config"], rig["settings"]
     resolution, where = settings["resolution"], {"aircraft": RIG_AIRCRAFT, "segment": rig["name"]}
     trim, mics = str(out / "trim.parquet"), str(out / "microphones.parquet")

@@ -39,4 +39,4 @@ def main(argv: list[str]) -> int:
     params = {"aircraft_config": aircraft, "speeds": segment["aircraft"][aircraft["name"]], "atmosphere": atmosphere,
               "segment": args.segment, "n_psi": args.n_psi, "n_r": args.n_r}
     return run_stage("trim", {}, {"trim": args.out}, params, args.debug,
-                     args.allow_outside_validity)
+                     args.allow_outside_validity, sources={"--aircraft": args.aircraft, "--mission": args.mission})

@@ -56,4 +56,4 @@ def main(argv: list[str]) -> int:
               "aircraft": aircraft["name"], "segment": provenance(args.trim, "segment")}
     return run_stage("wake", {"trim": args.trim, "loads": args.loads_dir}, {"wake": args.wake_dir, "bvi": args.bvi_dir},
                      params, args.debug,
-                     args.allow_outside_validity)
+                     args.allow_outside_validity, sources={"--aircraft": args.aircraft})

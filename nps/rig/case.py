@@ -32,7 +32,7 @@ import yaml
 
 from nps.core import frames
 from nps.rotor.bet import DiskGrid
-from nps.rotor.control import RotorControl, solve_rotor
+from nps.rotor.control import RotorControl, RotorSolution, solve_rotor
 from nps.noise.observers import ObserverError, points, with_directions
 from nps.rotor.geometry import OperatingPoint, RotorGeometry
 from nps.noise.signals import signal_arrays
@@ -77,6 +77,26 @@ def rotor_for_rig(rotor: Mapping, condition: Mapping) -> dict:
     if out.get("control", "collective") == "collective":
         out.pop("pitch_deg", None)
     return out
+
+
+def control_conflicts(mode: str, condition: Mapping) -> list[tuple[str, str]]:
+    """(field, problem) of every condition value the control ``mode`` cannot use: a thrust target with
+    ``fixed`` (the thrust is the answer), a pitch with ``collective`` (the trim sets it), hub-moment targets
+    without the cyclic of ``collective`` with flapping. A value that would be ignored is refused, not dropped."""
+    problems = []
+    if mode == "fixed" and "thrust_N" in condition:
+        problems.append(("condition.thrust_N", f"got {condition['thrust_N']!r}, but control 'fixed' uses no thrust "
+                         "target (the thrust is the answer of the given pitch and speed): remove it, or trim to it "
+                         "with control 'collective' or 'rpm'"))
+    if mode == "collective" and "pitch_deg" in condition:
+        problems.append(("condition.pitch_deg", f"got {condition['pitch_deg']!r}, but control 'collective' trims the "
+                         "pitch to the thrust target: remove it, or hold it with control 'fixed' or 'rpm'"))
+    cyclic = mode == "collective" and bool(condition.get("flapping", True))
+    for key in ("roll_moment_Nm", "pitch_moment_Nm"):
+        if not cyclic and float(condition.get(key, 0.0)) != 0.0:
+            problems.append((f"condition.{key}", f"got {condition[key]!r}, but only control 'collective' with flapping "
+                             f"trims the hub moments (control '{mode}'): remove it"))
+    return problems
 
 
 def read_microphone_file(path: str | Path) -> np.ndarray:
@@ -134,24 +154,38 @@ def microphone_positions(specs, base: str | Path = ".") -> tuple[np.ndarray, np.
     return np.concatenate(parts), groups
 
 
-def rig_trim(rotor: Mapping, condition: Mapping, grid: DiskGrid) -> pd.DataFrame:
-    """The trim artifact (one row, :data:`nps.rotor.trim.TRIM_COLUMNS`) of a rig: hub at the origin of G,
-    moving at the tunnel speed along +x_G, shaft tilted by the shaft angle.
-
-    The rotor is solved under its control mode here (:func:`nps.rotor.control.solve_rotor`), so the row
-    holds the rotor speed every later stage uses (solved for ``rpm``) and the blade-element thrust,
-    torque and power (for ``fixed`` the thrust is the answer, not a target).
-    """
+def rig_operating_point(rotor: Mapping, condition: Mapping) -> OperatingPoint:
+    """The rotor's operating point at a validated rig condition: the condition's speed, atmosphere, thrust and
+    moment targets, the advance ratios of the tunnel speed through the shaft tilted by the shaft angle."""
     atm = condition["atmosphere"]
     omega, speed = omega_of(condition), float(condition.get("tunnel_speed_mps", 0.0))
     r_gh = frames.hub_to_body(shaft_axis_flight(math.radians(condition.get("shaft_angle_deg", 0.0))))
-    velocity = np.array([speed, 0.0, 0.0])
+    v_h = -(r_gh.T @ np.array([speed, 0.0, 0.0])) / (omega * RotorGeometry.from_config(rotor).radius_m)
+    return OperatingPoint(omega, float(v_h[0]), float(v_h[1]), float(-v_h[2]), float(atm["density_kg_m3"]),
+                          float(atm["speed_of_sound_mps"]), float(condition.get("thrust_N", 0.0)),
+                          float(condition.get("roll_moment_Nm", 0.0)), float(condition.get("pitch_moment_Nm", 0.0)))
+
+
+def rig_solution(rotor: Mapping, condition: Mapping, grid: DiskGrid) -> RotorSolution:
+    """The rig's rotor solved under its control mode (:func:`nps.rotor.control.solve_rotor`) at
+    :func:`rig_operating_point`."""
     geometry, control = RotorGeometry.from_config(rotor), RotorControl.from_config(rotor)
-    v_h = -(r_gh.T @ velocity) / (omega * geometry.radius_m)
-    op = OperatingPoint(omega, float(v_h[0]), float(v_h[1]), float(-v_h[2]), float(atm["density_kg_m3"]),
-                        float(atm["speed_of_sound_mps"]), float(condition.get("thrust_N", 0.0)),
-                        float(condition.get("roll_moment_Nm", 0.0)), float(condition.get("pitch_moment_Nm", 0.0)))
-    solution = solve_rotor(geometry, op, grid, control, tip_loss=bool(rotor.get("tip_loss", True)))
+    return solve_rotor(geometry, rig_operating_point(rotor, condition), grid, control,
+                       tip_loss=bool(rotor.get("tip_loss", True)))
+
+
+def rig_trim(rotor: Mapping, condition: Mapping, grid: DiskGrid, solution: RotorSolution | None = None) -> pd.DataFrame:
+    """The trim artifact (one row, :data:`nps.rotor.trim.TRIM_COLUMNS`) of a rig: hub at the origin of G,
+    moving at the tunnel speed along +x_G, shaft tilted by the shaft angle.
+
+    The rotor is solved under its control mode here (:func:`rig_solution`, or ``solution`` when already
+    solved), so the row holds the rotor speed every later stage uses (solved for ``rpm``) and the
+    blade-element thrust, torque and power (for ``fixed`` the thrust is the answer, not a target).
+    """
+    speed = float(condition.get("tunnel_speed_mps", 0.0))
+    r_gh = frames.hub_to_body(shaft_axis_flight(math.radians(condition.get("shaft_angle_deg", 0.0))))
+    geometry, control = RotorGeometry.from_config(rotor), RotorControl.from_config(rotor)
+    solution = rig_solution(rotor, condition, grid) if solution is None else solution
     op, totals = solution.operating_point, solution.result.totals
     mu = math.hypot(op.mu_x, op.mu_y)
     row = {

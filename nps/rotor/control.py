@@ -27,7 +27,7 @@ import numpy as np
 import pandas as pd
 
 from nps.core.solvers import ConvergenceError, secant
-from nps.rotor.bet import Controls, DiskGrid, RotorTrim, TrimError, rotor_loads, trim_rotor
+from nps.rotor.bet import MAX_CONTROL_RAD, Controls, DiskGrid, RotorTrim, TrimError, rotor_loads, trim_rotor
 from nps.rotor.geometry import OperatingPoint, RotorGeometry
 
 MODES = ("collective", "rpm", "fixed")
@@ -94,15 +94,67 @@ def _secant(evaluate: Callable[[float], RotorTrim], u0: float, first: RotorTrim,
     return root.x, root.payload
 
 
+# usual ranges of the inputs a failed rotor solution names (likely_inputs): outside, a unit error is likely
+TIP_SPEED_RANGE_MPS = (30.0, 330.0)  # ΩR: small rigs to transonic tips; ΩR/(2π) × 60 rpm typed as rad/s exceeds it
+CHORD_RADIUS_RANGE = (0.01, 0.25)  # c/R of helicopter, tail, propeller and rig blades; a chord in mm exceeds it
+DENSITY_RANGE_KG_M3 = (0.05, 10.0)  # air at altitude to heavy-gas tunnels (nps.app.validity.check_atmosphere)
+
+
+def likely_inputs(geometry: RotorGeometry, op: OperatingPoint) -> str:
+    """The inputs a failed rotor solution most likely comes from, for its message: rotor speed (with the tip
+    speed), chord, radius and density, each marked where it lies outside its usual range (a speed in rpm,
+    a chord in mm), and the settings to change."""
+    tip_speed, chord_ratio = op.omega_rad_s * geometry.radius_m, geometry.chord_m / geometry.radius_m
+    notes = []
+    if not TIP_SPEED_RANGE_MPS[0] <= tip_speed <= TIP_SPEED_RANGE_MPS[1]:
+        notes.append(f"tip speed omega_rad_s x radius_m = {tip_speed:.4g} m/s is outside the usual "
+                     f"{TIP_SPEED_RANGE_MPS[0]:g}-{TIP_SPEED_RANGE_MPS[1]:g} m/s (omega in rpm? "
+                     f"{op.omega_rad_s:.4g} rpm would be {op.omega_rad_s * math.pi / 30.0:.4g} rad/s)")
+    if not CHORD_RADIUS_RANGE[0] <= chord_ratio <= CHORD_RADIUS_RANGE[1]:
+        notes.append(f"chord {geometry.chord_m:.4g} m is {chord_ratio:.3g} R, outside the usual "
+                     f"{CHORD_RADIUS_RANGE[0]:g}-{CHORD_RADIUS_RANGE[1]:g} R (chord in mm?)")
+    if not DENSITY_RANGE_KG_M3[0] <= op.density_kg_m3 <= DENSITY_RANGE_KG_M3[1]:
+        notes.append(f"density {op.density_kg_m3:.4g} kg/m³ is outside {DENSITY_RANGE_KG_M3[0]:g}-"
+                     f"{DENSITY_RANGE_KG_M3[1]:g} kg/m³ (g/m³?)")
+    found = "; ".join(notes) if notes else "each within its usual range: check the thrust target and the pitch"
+    return (f"inputs of rotor '{geometry.name}': omega_rad_s {op.omega_rad_s:.6g} rad/s, chord {geometry.chord_m:.4g} m, "
+            f"radius {geometry.radius_m:.4g} m, density {op.density_kg_m3:.4g} kg/m³, thrust target {op.thrust_N:.6g} N: "
+            f"{found}; settings to change: the rotor's omega_rad_s, chord_m, radius_m, pitch_deg or control, the "
+            f"condition's atmosphere or thrust_N")
+
+
 def solve_rotor(geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, control: RotorControl, *,
                 tol_rel: float = 1e-3, tip_loss: bool = True) -> RotorSolution:
     """Blade loads of one rotor under ``control`` (module docstring) at the operating point ``op``.
 
     ``op.thrust_N`` is the target of ``collective`` and ``rpm``; ``op.omega_rad_s`` the rotor
-    speed of ``collective`` and ``fixed`` and the start value of ``rpm``.
+    speed of ``collective`` and ``fixed`` and the start value of ``rpm``. A solution that does not
+    converge raises :class:`nps.rotor.bet.TrimError` naming the likely inputs (:func:`likely_inputs`).
     """
     if not 0.0 < tol_rel < 0.1:
         raise ValueError(f"solve_rotor: tol_rel: expected 0 < tol_rel < 0.1, got {tol_rel!r}")
+    try:
+        return _solve(geometry, op, grid, control, tol_rel, tip_loss)
+    except TrimError as error:
+        raise TrimError(f"{error}; {likely_inputs(geometry, op)}") from error
+
+
+def _bounded_collective(geometry: RotorGeometry, op: OperatingPoint, loads: Callable[[float], RotorTrim]
+                        ) -> Callable[[float], RotorTrim]:
+    """``loads`` of θ0 refusing a collective outside the trim's search bound |θ0| < MAX_CONTROL_RAD."""
+    def bounded(theta0: float) -> RotorTrim:
+        if not abs(theta0) < MAX_CONTROL_RAD:
+            raise TrimError(f"rotor '{geometry.name}': collective trim left the control bound |theta0| < "
+                            f"{MAX_CONTROL_RAD:g} rad (theta0 {theta0:.4g} rad = {math.degrees(theta0):.4g} deg) before "
+                            f"reaching the thrust target {op.thrust_N:.6g} N: the rotor cannot give it at "
+                            f"{op.omega_rad_s:.6g} rad/s")
+        return loads(theta0)
+    return bounded
+
+
+def _solve(geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, control: RotorControl, tol_rel: float,
+           tip_loss: bool) -> RotorSolution:
+    """:func:`solve_rotor` without the input hints."""
     if control.mode == "collective" and control.flapping:
         return RotorSolution(trim_rotor(geometry, op, grid, tol_rel=tol_rel, tip_loss=tip_loss), op, control)
 
@@ -125,8 +177,8 @@ def solve_rotor(geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, con
                                 op.omega_rad_s * math.sqrt(target / thrust0), target, tol, "rotor speed", geometry.name)
         return RotorSolution(result, at_rotor_speed(op, omega), control)
     # collective without flapping: θ0 alone, from 0.1 rad and a 0.01 rad step
-    _, result = _secant(lambda t: loads(t, op), _THETA_START_RAD, loads(_THETA_START_RAD, op),
-                            _THETA_START_RAD + 0.01, target, tol, "collective", geometry.name)
+    _, result = _secant(_bounded_collective(geometry, op, lambda t: loads(t, op)), _THETA_START_RAD,
+                        loads(_THETA_START_RAD, op), _THETA_START_RAD + 0.01, target, tol, "collective", geometry.name)
     return RotorSolution(result, op, control)
 
 

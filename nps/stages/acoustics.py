@@ -13,12 +13,15 @@ it every rotor's blade 0 is at ψ = 0 at t = 0). A signal table of a rotor with 
 ``phase_deg`` in its metadata.
 
 Before computing: provenance of every input (aircraft, segment, observer set, rotor; disk tables of
-the loads stage for variant ``base``, of the BVI stage for ``bvi``), non-empty tables, memory.
+the loads stage for variant ``base``, of the BVI stage for ``bvi``), non-empty tables, unique observer
+ids, each disk table's geometry against its rotor's trim row (:func:`check_disk_geometry`), memory.
 """
 
 from __future__ import annotations
 
 import math
+
+import numpy as np
 
 from nps.noise.acoustics import LOADING, THICKNESS, AcousticsError, Observers
 from nps.app.io import check_provenance, read_table, rotor_path, write_table
@@ -30,6 +33,28 @@ from nps.rotor.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
 
 OBSERVER_COLUMNS = ("observer", "x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps")
 DISK_STAGE = {"base": "loads", "bvi": "bvi"}  # variant -> stage that wrote its disk tables
+RADIUS_RTOL = 1e-6  # outer element edge max(r_m + dr_m/2) against the trim row's radius_m
+
+
+def check_disk_geometry(disk, row, path) -> None:
+    """Refuse a disk table that is not of the rotor it is radiated for (a table renamed, or written by another
+    tool without metadata): its blades' tip max(r_m + dr_m/2) must be the trim row's ``radius_m``, its
+    azimuths the grid ψ_i = 2π i/n_psi, every azimuth with the same radii (n_psi × n_r rows), and the
+    trim row's blade count must divide n_psi (blade b sits at ψ + 2π b/N on the same grid)."""
+    radius, blades = float(row["radius_m"]), int(row["n_blades"])
+    tip = float((disk["r_m"] + disk["dr_m"] / 2.0).max())
+    rotor = f"rotor '{row['rotor']}'"
+    if not abs(tip - radius) <= RADIUS_RTOL * radius:
+        raise ValueError(f"{path}: r_m: blade tip max(r_m + dr_m/2) = {tip:.6g} m, expected the radius {radius:.6g} m of "
+                         f"{rotor} in the trim table: the disk table is of another rotor; pass that rotor's loads")
+    psi = np.sort(disk["psi_rad"].unique())
+    n_psi, n_r = psi.size, disk["r_m"].nunique()
+    if len(disk) != n_psi * n_r or not np.allclose(psi, 2.0 * np.pi * np.arange(n_psi) / n_psi, rtol=0.0, atol=1e-9):
+        raise ValueError(f"{path}: psi_rad: expected the azimuth grid 2 pi i/n_psi with every azimuth at the same "
+                         f"{n_r} radii, got {n_psi} azimuths from {psi[0]:.4g} rad and {len(disk)} rows")
+    if n_psi % blades:
+        raise ValueError(f"{path}: psi_rad: {n_psi} azimuths, expected a multiple of the {blades} blades of {rotor} "
+                         f"in the trim table: the disk table is of another rotor; pass that rotor's loads")
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:
@@ -43,7 +68,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
         check_provenance(rotor_path(inputs["disks"], name),
                          {"stage": DISK_STAGE.get(params["variant"], tuple(DISK_STAGE.values())), "rotor": name, **same})
     trim = read_table(inputs["trim"], required=TRIM_COLUMNS, nonempty=True)
-    observers = read_table(inputs["observers"], required=OBSERVER_COLUMNS, nonempty=True, finite=True)
+    observers = read_table(inputs["observers"], required=OBSERVER_COLUMNS, nonempty=True, finite=True, unique="observer")
     obs = Observers(observers[["x_m", "y_m", "z_m"]].to_numpy(float), observers[["vx_mps", "vy_mps", "vz_mps"]].to_numpy(float))
     grid = common_grid(trim_row(trim, rotors[0], str(inputs["trim"])), samples)
     phases_deg = params["phases_deg"] if "phases_deg" in params else dict.fromkeys(rotors, 0.0)
@@ -51,6 +76,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     for name in rotors:
         disk_path = rotor_path(inputs["disks"], name)
         disk = read_table(disk_path, required=DISK_COLUMNS, nonempty=True)
+        check_disk_geometry(disk, trim_row(trim, name, str(inputs["trim"])), disk_path)
         check_memory(estimate_bytes("acoustics", {"n_psi": disk["psi_rad"].nunique(), "n_r": disk["r_m"].nunique(),
                                                   "samples_per_rev": samples}, len(observers), len(rotors)),
                      f"{outputs['signals']}: {len(observers)} observers x {samples} samples per revolution")

@@ -4,8 +4,9 @@ Workflow scripts are two lines, ``from nps.stages.job import run_job; run_job(sn
 The job's named inputs, outputs and params (less the ``code`` hash that only triggers reruns) and
 its wildcards become the stage's ``inputs``, ``outputs`` and ``params``. numba's thread pool is sized
 to the job's ``threads`` before anything imports numba. The stage's report goes to the job's
-``log:`` file; an error is written there too (message and traceback with the real module paths)
-and to stderr, and the job exits with status 1. The log's last line gives the job's start-up (process
+``log:`` file; an error is written there too and to stderr, and the job exits with status 1: an
+expected error (a refused input, :func:`expected_errors`) as one line ``error: stage '<stage>': ...``,
+any other error with its traceback (real module paths); ``NPS_DEBUG=1`` shows every traceback. The log's last line gives the job's start-up (process
 start to the stage function imported) and work (the stage function) in seconds, which
 ``benchmarks/campaign_times.py`` tabulates per rule.
 """
@@ -18,6 +19,18 @@ import time
 import traceback
 
 
+def expected_errors() -> tuple[type[BaseException], ...]:
+    """Errors of bad inputs (files, fields, values, validity, memory, trims that cannot converge): one line,
+    no traceback (a workflow job unless env ``NPS_DEBUG=1``, a command unless ``--debug``); every other error
+    keeps it. ConfigError, ValidityError, ObserverError, AcousticsError and ArtifactError are ValueErrors.
+    Imported when called: numba's thread pool is sized before anything imports numba."""
+    from nps.app.resources import ResourceError
+    from nps.rotor.bet import TrimError
+    from nps.rotor.trim import AircraftTrimError
+
+    return ValueError, KeyError, OSError, ResourceError, TrimError, AircraftTrimError
+
+
 def process_age_s() -> float:
     """Seconds since this process started (Linux /proc; 0 where unavailable)."""
     try:
@@ -28,6 +41,16 @@ def process_age_s() -> float:
     except (OSError, IndexError, ValueError):
         return 0.0
     return max(0.0, uptime_s - start_ticks / os.sysconf("SC_CLK_TCK"))
+
+
+def failure_text(stage: str, error: BaseException, trace: str, debug: bool = False) -> str:
+    """What a failed job writes to its log and stderr: one line ``error: stage '<stage>': <message>`` for an
+    expected error (:func:`expected_errors`), the message and ``trace`` (its traceback) for any other error
+    or with ``debug`` (env ``NPS_DEBUG=1``)."""
+    message = error.args[0] if isinstance(error, KeyError) and error.args else error
+    if isinstance(error, expected_errors()) and not debug:
+        return f"error: stage '{stage}': {message}\n"
+    return f"stage '{stage}' failed: {message}\n\n{trace}"
 
 
 def run_job(snakemake, stage: str) -> None:
@@ -50,7 +73,7 @@ def run_job(snakemake, stage: str) -> None:
             report = run(dict(snakemake.input.items()), dict(snakemake.output.items()), params)
             work_s = time.perf_counter() - started
         except Exception as error:  # every failure is logged where Snakemake points the user
-            text = f"stage '{stage}' failed: {error}\n\n{traceback.format_exc()}"
+            text = failure_text(stage, error, traceback.format_exc(), os.environ.get("NPS_DEBUG") == "1")
             log.write(text)
             sys.stderr.write(text)
             sys.exit(1)
