@@ -20,6 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from nps.plots import save_figure  # noqa: E402
+from nps.plots.maps import direction_name  # noqa: E402
 import pandas as pd  # noqa: E402
 
 from nps.core.frames import observer_direction  # noqa: E402
@@ -31,7 +32,7 @@ DIRECTIONS = {
     "advancing side, 30° below": (90.0, -30.0),
     "retreating side, 30° below": (270.0, -30.0),
     "behind, 30° below": (0.0, -30.0),
-    "below": (0.0, -90.0),
+    "straight below": (0.0, -90.0),
 }
 GROUPS = ("thickness", "loading")
 
@@ -64,16 +65,26 @@ def nearest_observer(observers: pd.DataFrame, azimuth_deg: float, elevation_deg:
     return int(observers["observer"].to_numpy()[np.argmax(np.asarray(dirs).reshape(-1, 3) @ target)])
 
 
+def _unit_direction(observers: pd.DataFrame, observer: int) -> np.ndarray:
+    row = observers[observers["observer"] == observer].iloc[0]
+    return np.asarray(observer_direction(np.radians(float(row["azimuth_deg"])), np.radians(float(row["elevation_deg"])))).ravel()
+
+
 def pick_observers(observers: pd.DataFrame, ids: np.ndarray, total_pa: np.ndarray) -> dict[str, int]:
-    """label → observer id: the loudest (largest rms of the total) and those nearest to DIRECTIONS."""
+    """label → observer id: the loudest (largest rms of the total) and those nearest to DIRECTIONS, each
+    direction once: an observer at the direction of one already picked (the straight-down point, which every
+    azimuth of a hemisphere grid repeats) is left out."""
     rms = np.sqrt(np.mean((total_pa - total_pa.mean(axis=1, keepdims=True)) ** 2, axis=1))
     loud = int(ids[np.argmax(rms)])
     row = observers[observers["observer"] == loud].iloc[0]
-    picks = {f"loudest (az {row['azimuth_deg']:.0f}°, el {row['elevation_deg']:.0f}°)": loud}
+    picks = {f"loudest ({direction_name(row['azimuth_deg'], row['elevation_deg'])})": loud}
+    seen = [_unit_direction(observers, loud)]
     for label, (az, el) in DIRECTIONS.items():
         obs = nearest_observer(observers, az, el)
-        if obs not in picks.values():
+        direction = _unit_direction(observers, obs)
+        if all(np.dot(direction, other) < 1.0 - 1e-9 for other in seen):
             picks[label] = obs
+            seen.append(direction)
     return picks
 
 

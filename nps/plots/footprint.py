@@ -23,9 +23,10 @@ from nps.plots import save_figure  # noqa: E402
 
 
 def footprint_figure(grid: pd.DataFrame, knots_m: np.ndarray, segments, metric: str, title: str,
-                     path: str | os.PathLike, levels_db=CONTOUR_LEVELS_DB):
+                     path: str | os.PathLike, levels_db=CONTOUR_LEVELS_DB, segment_names=None):
     """``grid``: footprint grid table (x_m, y_m, ``metric``); ``knots_m`` (n_leg + 1, 3) path knots
-    (E frame); ``segments``: segment id of each leg."""
+    (E frame); ``segments``: segment id of each leg; ``segment_names``: optional segment id → mission name,
+    written under each leg's id in the altitude profile."""
     for col in ("x_m", "y_m", metric):
         if col not in grid.columns:
             raise ValueError(f"footprint grid: missing column '{col}'")
@@ -47,8 +48,9 @@ def footprint_figure(grid: pd.DataFrame, knots_m: np.ndarray, segments, metric: 
     ax.set_title(title)
     fig.colorbar(fill, ax=ax, label=f"{'SEL' if metric.startswith('sel') else 'L_Amax'} (dB(A))")
     axz.plot(knots[:, 0] / 1e3, knots[:, 2], "k-")
+    names = dict(segment_names or {})
     for k, seg in enumerate(segments):
-        axz.annotate(seg, ((knots[k, 0] + knots[k + 1, 0]) / 2e3, (knots[k, 2] + knots[k + 1, 2]) / 2),
+        axz.annotate(f"{seg}\n{names[seg]}" if seg in names else seg, ((knots[k, 0] + knots[k + 1, 0]) / 2e3, (knots[k, 2] + knots[k + 1, 2]) / 2),
                      ha="center", va="bottom", fontsize=8)
     axz.set_xlabel("x along the track (km)")
     axz.set_ylabel("height (m)")

@@ -11,10 +11,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from nps.noise.signals import signal_arrays
-from nps.plots import save_figure
+from nps.plots import hemisphere_title, save_figure, segment_title
 import pandas as pd
 
-from nps.plots.maps import map_panels
+from nps.plots.maps import direction_name, map_panels
 from nps.noise.spectra import level_db, narrowband_msp
 from nps.app.study import hotspot
 
@@ -26,13 +26,17 @@ MAP_KINDS = {
 }
 
 
-def study_maps(kind: str, aircraft: str, metrics_by_segment: Mapping[str, pd.DataFrame], path) -> None:
+def study_maps(kind: str, aircraft: str, metrics_by_segment: Mapping[str, pd.DataFrame], path, *,
+               segment_names: Mapping[str, str] | None = None, radius_R: float | None = None,
+               radius_m: float | None = None) -> None:
     """Hemisphere maps of one level for several segments on a shared colour scale.
 
     ``metrics_by_segment``: segment → hemisphere metrics table (the variant with BVI where it
-    was computed). BVISPL maps mark the hotspot.
+    was computed); ``segment_names``: segment → mission name (titles); ``radius_R``, ``radius_m``: the
+    hemisphere's radius (title). Every panel names its maximum and where it is; BVISPL maps star the hotspot.
     """
     column, colour_label, name = MAP_KINDS[kind]
+    names = dict(segment_names or {})
     panels = []
     for segment, table in metrics_by_segment.items():
         spot = hotspot(table, column)
@@ -40,11 +44,12 @@ def study_maps(kind: str, aircraft: str, metrics_by_segment: Mapping[str, pd.Dat
             "azimuth_deg": table["azimuth_deg"].to_numpy(),
             "elevation_deg": table["elevation_deg"].to_numpy(),
             "level_db": table[column].to_numpy(),
-            "title": f"{aircraft} {segment}: {name}, max {spot['value']:.1f} dB",
+            "title": f"{aircraft} {segment_title(segment, names.get(segment))}: {name}\n"
+                     f"max {spot['value']:.1f} dB, {direction_name(spot['azimuth_deg'], spot['elevation_deg'])}",
             "marker": (spot["azimuth_deg"], spot["elevation_deg"]) if kind == "bvispl" else None,
         })
-    map_panels(panels, path, suptitle=f"{aircraft}: {name} on the 10 R hemisphere (moving with the aircraft)",
-               colour_label=colour_label)
+    map_panels(panels, path, suptitle=f"{aircraft}: {name} on the {hemisphere_title(radius_R, radius_m)} "
+                                      "(moving with the aircraft)", colour_label=colour_label)
 
 
 def rotor_oaspl(signals: pd.DataFrame) -> pd.DataFrame:
@@ -55,18 +60,24 @@ def rotor_oaspl(signals: pd.DataFrame) -> pd.DataFrame:
     return pd.DataFrame({"observer": ids, "oaspl_db": level_db(np.mean(p * p, axis=1))})
 
 
-def rotor_maps(aircraft: str, rotor: str, levels_by_segment: Mapping[str, pd.DataFrame], observers: pd.DataFrame, path) -> None:
-    """OASPL maps of a single rotor (e.g. the tail rotor) for several segments."""
+def rotor_maps(aircraft: str, rotor: str, levels_by_segment: Mapping[str, pd.DataFrame], observers: pd.DataFrame, path,
+               *, segment_names: Mapping[str, str] | None = None, radius_R: float | None = None,
+               radius_m: float | None = None) -> None:
+    """OASPL maps of a single rotor (e.g. the tail rotor) for several segments (titles as :func:`study_maps`)."""
+    names = dict(segment_names or {})
     panels = []
     for segment, levels in levels_by_segment.items():
         table = levels.merge(observers[["observer", "azimuth_deg", "elevation_deg"]], on="observer")
+        spot = hotspot(table, "oaspl_db")
         panels.append({
             "azimuth_deg": table["azimuth_deg"].to_numpy(),
             "elevation_deg": table["elevation_deg"].to_numpy(),
             "level_db": table["oaspl_db"].to_numpy(),
-            "title": f"{aircraft} {segment}: rotor '{rotor}' alone, max {table['oaspl_db'].max():.1f} dB",
+            "title": f"{aircraft} {segment_title(segment, names.get(segment))}: rotor '{rotor}' alone\n"
+                     f"max {spot['value']:.1f} dB, {direction_name(spot['azimuth_deg'], spot['elevation_deg'])}",
         })
-    map_panels(panels, path, suptitle=f"{aircraft}: OASPL of rotor '{rotor}' alone (thickness + loading)")
+    map_panels(panels, path, suptitle=f"{aircraft}: OASPL of rotor '{rotor}' alone (thickness + loading) on the "
+                                      f"{hemisphere_title(radius_R, radius_m)}")
 
 
 def summed_signal(signals_by_rotor: Mapping[str, pd.DataFrame], observer: int) -> tuple[np.ndarray, np.ndarray]:
@@ -80,8 +91,10 @@ def summed_signal(signals_by_rotor: Mapping[str, pd.DataFrame], observer: int) -
 
 
 def bvi_hotspot_figure(aircraft: str, segment: str, spot: Mapping[str, float], base: tuple, bvi: tuple,
-                       bpf_hz: float, harmonics: tuple[int, int], path) -> None:
-    """Pressure history and spectrum at the BVISPL hotspot with and without BVI loads."""
+                       bpf_hz: float, harmonics: tuple[int, int], path, *, segment_name: str | None = None,
+                       hemisphere: str = "hemisphere") -> None:
+    """Pressure history and spectrum at the BVISPL hotspot with and without BVI loads; ``hemisphere``: how the
+    title names the observer set (:func:`nps.plots.hemisphere_title`)."""
     fig, (ax_t, ax_f) = plt.subplots(1, 2, figsize=(12, 4))
     for (time_s, p_pa), label, style in ((base, "without BVI", "-"), (bvi, "with BVI", "-")):
         ax_t.plot(1e3 * (time_s - time_s[0]), p_pa, style, lw=0.9, label=label)
@@ -98,7 +111,8 @@ def bvi_hotspot_figure(aircraft: str, segment: str, spot: Mapping[str, float], b
     ax_f.set_ylabel("SPL of harmonic (dB re 20 µPa)")
     ax_f.set_ylim(bottom=max(0.0, ax_f.get_ylim()[0]))
     ax_f.legend()
-    fig.suptitle(f"{aircraft} {segment}: BVISPL hotspot, az {spot['azimuth_deg']:.0f}°, el {spot['elevation_deg']:.0f}° "
-                 f"(observer {spot['observer']}), one revolution")
+    fig.suptitle(f"{aircraft} {segment_title(segment, segment_name)}: BVISPL hotspot\non the {hemisphere}, "
+                 f"{direction_name(spot['azimuth_deg'], spot['elevation_deg'])} (observer {spot['observer']}), "
+                 "one revolution", fontsize=10)
     fig.tight_layout()
     save_figure(fig, path)

@@ -19,29 +19,46 @@ from matplotlib.collections import LineCollection  # noqa: E402
 from nps.plots.disk import disk_plot  # noqa: E402
 
 
-def wake_views(nodes_h_m: np.ndarray, blades_h_m: np.ndarray, radius_m: float, title: str = ""):
-    """Top (x_H–y_H) and side (x_H–z_H) views, lengths in rotor radii.
+def wake_views(nodes_h_m: np.ndarray, blades_h_m: np.ndarray, radius_m: float, title: str = "",
+               ages_rev: np.ndarray | None = None):
+    """Top (x_H–y_H) and side (x_H–z_H) views on one length scale, lengths in rotor radii.
 
     ``nodes_h_m`` (B, N, 3) vortex nodes in H; ``blades_h_m`` (B, 2, 3) root and tip of each
-    blade in H. Vortex lines are coloured by wake age (node index, viridis).
+    blade in H; ``ages_rev`` (B, N) the nodes' wake age in revolutions (colour; without it the node
+    index over the last). The panels share the x axis and their heights follow the drawn extents, so
+    neither view is a sliver and no white band separates them; the colour bar runs under both.
     """
     nodes = np.asarray(nodes_h_m) / radius_m
     blades = np.asarray(blades_h_m) / radius_m
-    fig, (top, side) = plt.subplots(2, 1, figsize=(8, 8), height_ratios=[2, 1], layout="constrained")
     n_age = nodes.shape[1]
-    for ax, (i, j), ylabel in ((top, (0, 1), "y_H / R (starboard)"), (side, (0, 2), "z_H / R (up)")):
+    ages = (np.tile(np.arange(n_age) / max(n_age - 1, 1), (nodes.shape[0], 1)) if ages_rev is None
+            else np.asarray(ages_rev, dtype=float))
+    points = np.concatenate([nodes.reshape(-1, 3), blades.reshape(-1, 3)])
+    low, high = points.min(axis=0) - 0.1, points.max(axis=0) + 0.1
+    extent = np.maximum(high - low, 0.4)
+    width_in = 8.0
+    heights = [width_in * extent[1] / extent[0], width_in * extent[2] / extent[0]]
+    fig, (top, side) = plt.subplots(2, 1, figsize=(width_in + 1.2, sum(heights) + 2.4), sharex=True,
+                                    height_ratios=heights, layout="constrained")
+    norm = plt.Normalize(0.0, float(ages.max()) or 1.0)
+    for ax, j, ylabel in ((top, 1, "y_H / R (starboard)"), (side, 2, "z_H / R (up, thrust)")):
         for k in range(nodes.shape[0]):
-            segs = np.stack([nodes[k, :-1][:, [i, j]], nodes[k, 1:][:, [i, j]]], axis=1)
-            lc = LineCollection(segs, cmap="viridis", linewidths=0.8)
-            lc.set_array(np.arange(n_age - 1) / max(n_age - 1, 1))
+            segs = np.stack([nodes[k, :-1][:, [0, j]], nodes[k, 1:][:, [0, j]]], axis=1)
+            lc = LineCollection(segs, cmap="viridis", norm=norm, linewidths=0.9)
+            lc.set_array(0.5 * (ages[k, :-1] + ages[k, 1:]))
             ax.add_collection(lc)
-            ax.plot(blades[k, :, i], blades[k, :, j], color="k", lw=3)
-        ax.autoscale()
+            ax.plot(blades[k, :, 0], blades[k, :, j], color="k", lw=3)
+        ax.set_xlim(low[0], high[0])
+        ax.set_ylim(low[j], low[j] + extent[j])
         ax.set_aspect("equal")
-        ax.set_xlabel("x_H / R (aft; flight toward the left)")
         ax.set_ylabel(ylabel)
-    top.set_title(title or "Tip-vortex wake")
-    fig.colorbar(lc, ax=[top, side], label="wake age / maximum age")
+        ax.grid(alpha=0.3)
+    top.set_title("top view, looking down the shaft", fontsize=9)
+    side.set_title("side view from port", fontsize=9)
+    side.set_xlabel("x_H / R (aft; flight toward the left)")
+    fig.suptitle(title or "Tip-vortex wake")
+    fig.colorbar(lc, ax=[top, side], location="bottom", shrink=0.6, aspect=40,
+                 label="wake age (rotor revolutions)" if ages_rev is not None else "wake age / maximum age")
     return fig
 
 
@@ -126,7 +143,8 @@ def wake_figure_from_tables(wake_table, loads_disk, path, *, radius_m: float, ti
     root = float(loads_disk["r_m"].min() - 0.5 * loads_disk["dr_m"].iloc[0])
     tips = nodes[:, 0, :]
     blades = np.stack([tips * root / radius_m, tips], axis=1)
-    fig = wake_views(nodes, blades, radius_m, title=title)
+    ages = first["age_rad"].to_numpy().reshape(n_blades, -1) / (2.0 * np.pi) if "age_rad" in first else None
+    fig = wake_views(nodes, blades, radius_m, title=title, ages_rev=ages)
     fig.savefig(path, dpi=110)
     plt.close(fig)
 

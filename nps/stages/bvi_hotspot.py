@@ -17,8 +17,10 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
 
     inputs: ``metrics`` (hemisphere, variant bvi), ``trim``, ``base`` and ``bvi`` (acoustics directories),
     ``observers``. outputs: ``hotspot``, ``histories`` (PNG). params: ``rotors``, ``harmonics``,
+    ``segment_name`` (the mission's name of the segment), ``radius_R``, ``radius_m`` (the hemisphere's radius),
     ``aircraft``, ``segment``.
     """
+    from nps.plots import hemisphere_title, segment_title
     from nps.plots.acoustics import pressure_histories
     from nps.plots.study import bvi_hotspot_figure, summed_signal
 
@@ -29,9 +31,11 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     signals_bvi = read_signals(inputs["bvi"], rotors)
     base = summed_signal(read_signals(inputs["base"], rotors), spot["observer"])
     bvi = summed_signal(signals_bvi, spot["observer"])
+    hemisphere = hemisphere_title(params["radius_R"], params["radius_m"])
     bvi_hotspot_figure(params["aircraft"], params["segment"], spot, base, bvi, bpf_hz, tuple(params["harmonics"]),
-                       outputs["hotspot"])
+                       outputs["hotspot"], segment_name=params["segment_name"], hemisphere=hemisphere)
     observers = read_table(inputs["observers"], required=("observer", "azimuth_deg", "elevation_deg"))
     pressure_histories(signals_bvi, observers, outputs["histories"],
-                       title=f"{params['aircraft']} {params['segment']}, hemisphere observers, loads with BVI")
+                       title=f"{params['aircraft']} {segment_title(params['segment'], params['segment_name'])}, "
+                             f"{hemisphere}, loads with BVI")
     return str(spot)

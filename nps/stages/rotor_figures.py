@@ -16,8 +16,10 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
 
     inputs: ``loads`` (directory), optional ``wake`` and ``bvi`` (directories). outputs: ``figures``
     (directory: ``disk_{rotor}.png``, ``wake_{rotor}.png``, ``bvi_{rotor}.png``). params: ``rotors``
-    (drawn rotor → {rotation_sign, radius_m}), ``aircraft``, ``segment``.
+    (drawn rotor → {rotation_sign, radius_m}), ``aircraft``, ``segment``; optional ``segment_name`` (the
+    mission's name of the segment, in the titles).
     """
+    from nps.plots import segment_title
     from nps.plots.disk import loads_figure
     from nps.plots.wake import bvi_figure_from_tables, wake_figure_from_tables
 
@@ -25,7 +27,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     out.mkdir(parents=True, exist_ok=True)
     report = []
     for rotor, spec in params["rotors"].items():
-        name = f"{params['aircraft']} {params['segment']} rotor '{rotor}'"
+        name = f"{params['aircraft']} {segment_title(params['segment'], params.get('segment_name'))}, rotor '{rotor}'"
         disk = read_table(rotor_path(inputs["loads"], rotor))
         loads_figure(disk, out / f"disk_{rotor}.png", rotation_sign=int(spec["rotation_sign"]), title=f"{name} (flying toward the top)")
         if "wake" in inputs:

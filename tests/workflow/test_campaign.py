@@ -12,6 +12,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pyarrow.parquet as pq
 import pytest
 import yaml
@@ -125,8 +126,9 @@ def test_changing_one_segment_reruns_only_that_segment(campaign_dir):
         mission["segments"][2]["aircraft"]["helicopter"].pop("flight_path_deg")
 
     jobs = _jobs_after_edit(campaign_dir, "missions/demo.yaml", faster_seg3)
-    # per-segment jobs: only seg3's; aircraft-level study jobs (maps over segments, summary) read seg3 too
-    aircraft_level = {"summary", "study_maps", "rotor_maps"}
+    # per-segment jobs: only seg3's; aircraft-level study jobs (maps over segments, summary) and the campaign's
+    # results summary read seg3 too
+    aircraft_level = {"summary", "study_maps", "rotor_maps", "results_summary"}
     assert all("segment=seg3" in wildcards or rule in aircraft_level for rule, wildcards in jobs), jobs
     assert not any("segment=seg2" in wildcards for _, wildcards in jobs), jobs
     assert any(rule == "trim" for rule, _ in jobs), jobs
@@ -138,7 +140,7 @@ def test_changing_one_aircraft_reruns_only_that_aircraft(campaign_dir):
 
     jobs = _jobs_after_edit(campaign_dir, "aircraft/coaxial.yaml", heavier_lock)
     assert any(rule == "trim" for rule, _ in jobs), jobs
-    assert all("aircraft=coaxial" in wildcards for _, wildcards in jobs), jobs
+    assert all("aircraft=coaxial" in wildcards or rule == "results_summary" for rule, wildcards in jobs), jobs
 
 
 def test_lint_reports_only_environment_findings():
@@ -161,3 +163,23 @@ def test_bad_configuration_stops_before_any_job(tmp_path):
     assert "config/aircraft/helicopter.yaml: rotors[0].radius_m: expected a number > 0, got -7.62" in result.stderr
     assert "Traceback" not in result.stderr
     assert not (tmp_path / "results").exists()
+
+
+def test_report_opens_on_the_results_summary(campaign_dir):
+    """The results summary holds every aircraft × segment with the levels of the summary tables, and the report's
+    front page (the workflow description) inserts it and links the figures."""
+    import json
+
+    summary = pd.read_csv(campaign_dir / "results/results_summary.csv", keep_default_na=False)
+    assert [tuple(p) for p in summary[["aircraft", "segment"]].to_numpy()] == [
+        (a, s) for a in TINY["campaign"]["aircraft"] for s in TINY["campaign"]["segments"]]
+    for aircraft, rows in summary.groupby("aircraft", sort=False):
+        table = pq.read_table(campaign_dir / "results" / aircraft / "summary.parquet").to_pandas()
+        for column in ("max_oaspl_db", "max_dba_db", "max_bvispl_db"):
+            assert np.allclose(rows[column], table[column], rtol=1e-5, atol=0.0), (aircraft, column)
+    result = _snakemake(campaign_dir, "--report", str(campaign_dir / "report.html"))
+    assert result.returncode == 0, result.stderr[-2000:]
+    page = (campaign_dir / "report.html").read_text()
+    front = json.loads(re.search(r"workflow_desc\s*=\s*(\".*?\");\s*\n", page, re.S).group(1))
+    assert "NPS results summary" in front and "6 deg descent (BVI)" in front
+    assert "showResultInfo('results/helicopter/seg3/figures/hotspot_bvi.png')" in front

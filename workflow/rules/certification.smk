@@ -10,7 +10,13 @@ rule certification:
            for p in ("takeoff", "overflight", "approach")},
     output:
         summary=f"{RESULTS}/{{aircraft}}/certification/certification.parquet",
-        summary_csv=f"{RESULTS}/{{aircraft}}/certification/certification.csv",
+        summary_csv=report(
+            f"{RESULTS}/{{aircraft}}/certification/certification.csv",
+            caption="../report/certification_table.rst",
+            category="{aircraft}",
+            subcategory="Footprint and certification",
+            labels={"aircraft": "{aircraft}", "figure": "certification EPNL, limits, margins (CSV)"},
+        ),
         microphones=f"{RESULTS}/{{aircraft}}/certification/microphones.parquet",
         histories=f"{RESULTS}/{{aircraft}}/certification/histories.parquet",
         pnlt_figure=report(
@@ -25,7 +31,7 @@ rule certification:
             caption="../report/certification_table.rst",
             category="{aircraft}",
             subcategory="Footprint and certification",
-            labels={"aircraft": "{aircraft}", "figure": "certification EPNL, limits, margins"},
+            labels={"aircraft": "{aircraft}", "figure": "certification EPNL, limits, margins (picture)"},
         ),
     params:
         mission=CAMPAIGN.mission,

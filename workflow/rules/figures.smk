@@ -22,6 +22,7 @@ rule rotor_figures:
                 "radius_m": CAMPAIGN.rotor(wildcards.aircraft, r)["radius_m"]}
             for r in figure_rotors(wildcards.aircraft)
         },
+        segment_name=lambda wildcards: CAMPAIGN.segment(wildcards.segment)["name"],
         code=code("rotor_figures"),
     log:
         log_path("rotor_figures"),

@@ -1,5 +1,16 @@
 # The study (thesis chapter 7): hemisphere maps, BVI hotspots and summary tables per aircraft.
 # Levels come from the hemisphere metrics of the variant with BVI wherever it was computed.
+# Figure titles name each segment by its mission name and the hemisphere by its radius in R and metres.
+
+
+def segment_names():
+    """Segment id -> the mission's name of it, for the campaign's segments."""
+    return {s: CAMPAIGN.segment(s)["name"] for s in CAMPAIGN.segments}
+
+
+def hemisphere_radius_m(aircraft):
+    """Radius (m) of the hemisphere observer set: radius_R times the reference (first) rotor's radius."""
+    return config["observer_sets"]["hemisphere"]["radius_R"] * CAMPAIGN.aircraft[aircraft]["rotors"][0]["radius_m"]
 
 
 rule study_maps:
@@ -19,6 +30,9 @@ rule study_maps:
         },
     params:
         segments={kind: MAP_SEGMENTS[kind]() for kind in map_kinds()},
+        segment_names=segment_names(),
+        radius_R=config["observer_sets"]["hemisphere"]["radius_R"],
+        radius_m=lambda wc: hemisphere_radius_m(wc.aircraft),
         code=code("study_maps"),
     log:
         log_path("study_maps", "{aircraft}"),
@@ -47,6 +61,9 @@ rule rotor_maps:
         ),
     params:
         segments=lambda wc: CAMPAIGN.figure_segments("map")[:2],
+        segment_names=segment_names(),
+        radius_R=config["observer_sets"]["hemisphere"]["radius_R"],
+        radius_m=lambda wc: hemisphere_radius_m(wc.aircraft),
         code=code("rotor_maps"),
     log:
         log_path("rotor_maps", "{aircraft}/{rotor}"),
@@ -86,6 +103,9 @@ rule bvi_hotspot:
     params:
         rotors=lambda wc: rotor_names(wc.aircraft),
         harmonics=config["acoustics"]["bvispl_harmonics"],
+        segment_name=lambda wc: CAMPAIGN.segment(wc.segment)["name"],
+        radius_R=config["observer_sets"]["hemisphere"]["radius_R"],
+        radius_m=lambda wc: hemisphere_radius_m(wc.aircraft),
         code=code("bvi_hotspot"),
     log:
         log_path("bvi_hotspot"),
@@ -143,3 +163,64 @@ ALL_TARGETS.extend(
     for s in CAMPAIGN.figure_segments("bvi_map")
     if "bvi" in CAMPAIGN.variants(s)
 )
+
+
+# The campaign's results summary (nps.stages.results_summary): every aircraft x segment in one HTML page and
+# CSV, the page the report opens on (workflow/report/workflow.rst inserts it; category "1. Results summary"
+# sorts first in the report's menu). It reads the summary tables and lists the figures, so every other target
+# of the campaign's aircraft is an input: the job runs last.
+SUMMARY_CATEGORY = "1. Results summary"
+
+
+def results_summary_inputs(wildcards):
+    inputs = {}
+    for a in CAMPAIGN.aircraft:
+        inputs[f"summary_{a}"] = f"{RESULTS}/{a}/summary.parquet"
+        inputs[f"summary_csv_{a}"] = f"{RESULTS}/{a}/summary.csv"
+        if "certification" in config:
+            inputs[f"certification_{a}"] = f"{RESULTS}/{a}/certification/certification.parquet"
+        for s in CAMPAIGN.segments:
+            inputs[f"trim_{a}_{s}"] = f"{RESULTS}/{a}/{s}/trim.parquet"
+            inputs[f"metrics_{a}_{s}"] = hemisphere_metrics(a, s)
+    inputs["targets"] = [t for t in ALL_TARGETS if any(t.startswith(f"{RESULTS}/{a}/") for a in CAMPAIGN.aircraft)]
+    return inputs
+
+
+rule results_summary:
+    input:
+        unpack(results_summary_inputs),
+    output:
+        html=report(
+            f"{RESULTS}/results_summary.html",
+            caption="../report/results_summary.rst",
+            category=SUMMARY_CATEGORY,
+            labels={"table": "results summary (page)"},
+        ),
+        csv=report(
+            f"{RESULTS}/results_summary.csv",
+            caption="../report/results_summary.rst",
+            category=SUMMARY_CATEGORY,
+            labels={"table": "results summary (CSV)"},
+        ),
+    params:
+        campaign_aircraft=list(CAMPAIGN.aircraft),
+        segments=CAMPAIGN.segments,
+        segment_names=segment_names(),
+        radius_R=config["observer_sets"]["hemisphere"]["radius_R"],
+        radius_m={a: hemisphere_radius_m(a) for a in CAMPAIGN.aircraft},
+        loudest=config["outputs"]["spectra_loudest"],
+        results=RESULTS,
+        code=code("results_summary"),
+    log:
+        log_path("results_summary", "campaign"),
+    benchmark:
+        bench_path("results_summary", "campaign")
+    threads: 1
+    resources:
+        mem_mb=1000,
+        runtime=5,
+    script:
+        STAGE_SCRIPT
+
+
+ALL_TARGETS.append(f"{RESULTS}/results_summary.html")
