@@ -52,11 +52,12 @@ def _rig_from_options(args) -> dict:
     resolution = {"n_psi": args.n_psi, "n_r": args.n_r, "samples_per_rev": args.samples_per_rev}
     acoustics = {key: default(f"acoustics.{key}") for key in ("dual_compact_chord_fractions", "bvispl_harmonics")}
     return {"name": "rotor", "description": "python -m nps rotor", "rotor": rotor, "condition": condition,
-            "microphones": mics, "resolution": resolution, "acoustics": acoustics}
+            "microphones": mics, "resolution": resolution, "acoustics": acoustics,
+            "allow_outside_validity": bool(args.allow_outside_validity)}
 
 
 def main(argv: list[str]) -> int:
-    ap = parser("rotor", __doc__)
+    ap = parser("rotor", __doc__, validity=True)  # --allow-outside-validity: the rig's allow_outside_validity
     ap.add_argument("--rig", help="a rig YAML instead of the rotor and condition options")
     ap.add_argument("--rotor-file", help="rotor YAML (one rotors[] entry)")
     ap.add_argument("--aircraft", help="aircraft YAML holding the rotor")

@@ -73,13 +73,16 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     grid = common_grid(trim_row(trim, rotors[0], str(inputs["trim"])), samples)
     phases_deg = params["phases_deg"] if "phases_deg" in params else dict.fromkeys(rotors, 0.0)
     report = []
-    for name in rotors:
+    disks = {}
+    for name in rotors:  # every rotor's disk checked before the first signal table is written
         disk_path = rotor_path(inputs["disks"], name)
-        disk = read_table(disk_path, required=DISK_COLUMNS, nonempty=True)
+        disks[name] = disk = read_table(disk_path, required=DISK_COLUMNS, nonempty=True)
         check_disk_geometry(disk, trim_row(trim, name, str(inputs["trim"])), disk_path)
         check_memory(estimate_bytes("acoustics", {"n_psi": disk["psi_rad"].nunique(), "n_r": disk["r_m"].nunique(),
                                                   "samples_per_rev": samples}, len(observers), len(rotors)),
                      f"{outputs['signals']}: {len(observers)} observers x {samples} samples per revolution")
+    for name in rotors:
+        disk_path, disk = rotor_path(inputs["disks"], name), disks.pop(name)
         hinge = float(params["hinge_offsets_m"][name])
         phase_deg = float(phases_deg[name])
         try:

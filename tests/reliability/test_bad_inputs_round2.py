@@ -104,6 +104,16 @@ def _disks(b, out: Path, edit: Callable, rotor: str = "tail") -> Path:
     return d
 
 
+def _tail_is_main(b, out: Path) -> Path:
+    """A disk directory with the main rotor's loads and, as tail.parquet, the main rotor's again without metadata:
+    the tail is refused before the main rotor's signals are written."""
+    d = out / "disks"
+    d.mkdir(parents=True, exist_ok=True)
+    shutil.copy(b.loads / "main.parquet", d / "main.parquet")
+    without_metadata(b.loads / "main.parquet", d / "tail.parquet")
+    return d
+
+
 def _first_azimuths(df: pd.DataFrame, n: int = 35) -> pd.DataFrame:
     """The disk table's first ``n`` azimuths, relabelled as a grid of ``n`` azimuths over the revolution."""
     psi = np.sort(df["psi_rad"].unique())[:n]
@@ -219,6 +229,8 @@ CASES = [
     # --- a loads table is of the rotor it is radiated for ----------------------------------------------------
     Case("acoustics_tail_loads_renamed_without_metadata", lambda b, out: acoustics_cmd(b, out, disks=_disks(b, out, lambda df: df)),
          ("disks/main.parquet", "r_m", "expected the radius 7.62 m of rotor 'main'")),
+    Case("acoustics_main_loads_as_tail_writes_no_main_signals", lambda b, out: acoustics_cmd(b, out, disks=_tail_is_main(b, out)),
+         ("disks/tail.parquet", "expected the radius 1.55 m of rotor 'tail'")),
     Case("acoustics_radius_scaled_without_metadata", lambda b, out: acoustics_cmd(b, out, disks=_disks(
         b, out, lambda df: df.assign(r_m=df.r_m * 0.3048, dr_m=df.dr_m * 0.3048), rotor="main")), ("r_m", "radius 7.62 m")),
     Case("acoustics_azimuths_shifted", lambda b, out: acoustics_cmd(b, out, disks=_disks(
@@ -298,6 +310,16 @@ def test_the_rig_switch_records_the_findings(tmp_path, capsys):
     from nps.app.io import read_metadata
 
     warnings = read_metadata(tmp_path / "rig" / "microphones.parquet")["validity_warnings"]
+    assert any("blade path / chord" in w["quantity"] for w in warnings)
+    assert "warning: observer 0" in capsys.readouterr().out
+
+
+def test_the_rotor_switch_records_the_findings(tmp_path, capsys):
+    """python -m nps rotor --allow-outside-validity: the microphone in the disk runs, with its warning recorded."""
+    assert nps_main(rotor_cmd(tmp_path, "--allow-outside-validity", mic=["--mic", "0.1", "0.0", "0.0"])) == 0
+    from nps.app.io import read_metadata
+
+    warnings = read_metadata(tmp_path / "rotor" / "microphones.parquet")["validity_warnings"]
     assert any("blade path / chord" in w["quantity"] for w in warnings)
     assert "warning: observer 0" in capsys.readouterr().out
 
