@@ -26,7 +26,9 @@ STYLE = """<style>
 .nps-page td.good { background: #c7e9c0; }
 .nps-page .scroll { overflow-x: auto; max-width: 100%; }
 .nps-page .note { color: #444; }
+.prose:has(.nps-page) { max-width: 75rem; }
 </style>"""
+# the last rule widens the column of Snakemake's report front page that holds an inserted page (32rem otherwise)
 
 
 def _cell(value, css: str = "") -> str:
