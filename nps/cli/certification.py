@@ -45,4 +45,5 @@ def main(argv: list[str]) -> int:
               "segments": {p: getattr(args, f"{p}_segment") for p in procedures}, "vne_mps": args.vne_mps,
               "approach_min_speed_mps": args.approach_min_speed_mps, "ground": ground(args), "ground_as_written": ground(args),
               "absorption": not args.no_absorption}
-    return run_stage("certification", inputs, outputs, params, args.debug)
+    return run_stage("certification", inputs, outputs, params, args.debug,
+                     sources={"--aircraft": args.aircraft, "--mission": args.mission})

@@ -55,4 +55,4 @@ def main(argv: list[str]) -> int:
               "microphones": mics, "ground": ground(args), "ground_as_written": ground(args),
               "atmosphere": {"isa_delta_K": args.isa_delta_k, "relative_humidity_pct": args.relative_humidity_pct},
               "absorption": not args.no_absorption}
-    return run_stage("footprint", hemis, outputs, params, args.debug)
+    return run_stage("footprint", hemis, outputs, params, args.debug, sources={"--mission": args.mission})

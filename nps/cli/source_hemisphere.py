@@ -38,4 +38,5 @@ def main(argv: list[str]) -> int:
               "obsset": provenance(args.observers, "obsset"),
               "variant": provenance(str(rotor_path(args.signals, rotors[0])), "variant") or "base"}
     inputs = {"signals": args.signals, "trim": args.trim, "observers": args.observers, **({"hsi": args.hsi} if args.hsi else {})}
-    return run_stage("source_hemisphere", inputs, {"hemisphere": args.out}, params, args.debug)
+    return run_stage("source_hemisphere", inputs, {"hemisphere": args.out}, params, args.debug,
+                     sources={"--aircraft": args.aircraft})

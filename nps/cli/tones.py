@@ -38,4 +38,5 @@ def main(argv: list[str]) -> int:
               "aircraft": aircraft["name"], "segment": provenance(args.trim, "segment"),
               "obsset": provenance(first, "obsset"), "variant": provenance(first, "variant") or "base"}
     outputs = {"tones": args.out, "tones_csv": args.csv, "spectra": args.spectra_out}
-    return run_stage("tones", {"signals": args.signals, "trim": args.trim}, outputs, params, args.debug)
+    return run_stage("tones", {"signals": args.signals, "trim": args.trim}, outputs, params, args.debug,
+                     sources={"--aircraft": args.aircraft})

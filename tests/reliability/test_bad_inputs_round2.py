@@ -222,6 +222,11 @@ CASES = [
          ("trim.parquet", "is the input trim")),
     Case("observers_out_is_the_config", lambda b, out: _replace(observers_cmd(b, out, AHEAD_ONE), "--out", str(out / "config.yaml")),
          ("config.yaml", "is the input --config")),
+    Case("tones_csv_is_the_aircraft_file", lambda b, out: ["tones", "--aircraft", aircraft_file(out, lambda a: None), "--trim",
+                                                          str(b.trim), "--signals", str(b.signals), "--out", str(out / "t.parquet"),
+                                                          "--csv", str(out / "aircraft" / "helicopter.yaml"),
+                                                          "--spectra-out", str(out / "s.parquet")],
+         ("tones_csv", "helicopter.yaml: is the input --aircraft")),
     Case("wake_dir_is_the_loads_dir", lambda b, out: _wake_into_loads(b, out), ("is the input loads",)),
     Case("rotor_out_dir_holds_the_rotor_file", lambda b, out: _replace(
         rotor_cmd(out, rotor_file=edited_rotor(out)), "--out-dir", str(out / "rigs" / "itr")),
