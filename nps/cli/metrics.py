@@ -4,8 +4,8 @@
 Reads the acoustics directory (and optionally the HSI directory) of every rotor, the observer table
 and the trim artifact; writes the metrics table (one row per observer), the band table
 (observer × source × band) and, with ``--figure``, the spectrum of the loudest observer. Broadband:
-Pegg's method (default), BPM blade self-noise from the rotors' disk tables (``--broadband bpm --disks DIR``)
-or none.
+Pegg's method (default), BPM blade self-noise from the rotors' disk tables (``--broadband bpm --disks DIR``),
+none, or per rotor BPM outside Pegg's data range and Pegg inside (``--broadband auto --disks DIR``).
 """
 
 from __future__ import annotations
@@ -28,7 +28,8 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--relative-humidity-pct", type=float, default=default("atmosphere.relative_humidity_pct"))
     ap.add_argument("--no-absorption", action="store_true", help="skip ISO 9613-1 air absorption")
     ap.add_argument("--broadband", choices=BROADBAND_MODELS, default=default("models.broadband"),
-                    help="broadband source: Pegg's method, BPM blade self-noise (needs --disks) or none (default %(default)s)")
+                    help="broadband source: Pegg's method, BPM blade self-noise (needs --disks), none, or auto: per rotor, "
+                         "BPM outside Pegg's data range and Pegg inside (needs --disks) (default %(default)s)")
     ap.add_argument("--disks", help="directory of the rotors' disk tables the signals were radiated from (BPM broadband)")
     ap.add_argument("--bvispl-harmonics", type=int, nargs=2, default=default("acoustics.bvispl_harmonics"),
                     metavar=("FIRST", "LAST"))
@@ -36,8 +37,8 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--bands-out", required=True, help="1/3-octave band Parquet")
     ap.add_argument("--figure", help="spectrum figure (PNG) of the loudest observer")
     args = ap.parse_args(argv)
-    if args.broadband == "bpm" and not args.disks:
-        return fail("--broadband bpm needs --disks (the loads or bvi directory of the rotors' disk tables)")
+    if args.broadband in ("bpm", "auto") and not args.disks:
+        return fail(f"--broadband {args.broadband} needs --disks (the loads or bvi directory of the rotors' disk tables)")
     problem = option_problem({"--altitude-m": ("atmosphere.altitude_m", args.altitude_m),
                               "--isa-delta-k": ("atmosphere.isa_delta_K", args.isa_delta_k),
                               "--relative-humidity-pct": ("atmosphere.relative_humidity_pct", args.relative_humidity_pct),

@@ -397,7 +397,8 @@ def metrics_tables(
     whose BPF defines BVISPL); ``solidity``: rotor → σ (blade area A_b = σ π R², C̄_L = 6 C_T/σ);
     ``atmosphere``: absorption over each rotor's hub-observer distance, or None for none.
     ``broadband_msp``: rotor → broadband 1/3-octave band MSP (Pa², (n_observers, STUDY_BANDS), observers
-    in ascending id order) computed elsewhere (BPM), used instead of Pegg's when ``broadband_on``.
+    in ascending id order) computed elsewhere (BPM), used instead of Pegg's when ``broadband_on``; the
+    rotors it does not hold get Pegg's (``models.broadband: auto``: BPM for some rotors, Pegg for the others).
     ``tone_sum`` (:data:`nps.noise.signals.TONE_SUMS`): ``coherent`` sums the rotors' pressures, ``incoherent`` their
     mean-square spectra (rotors whose phases are not locked; broadband is an energy sum either way).
     Returns (metrics: one row per observer, bands: observer × source × band, the levels
@@ -492,12 +493,12 @@ def _broadband_band_levels(rows, geometry, solidity: Mapping[str, float], atmosp
                            given_msp: Mapping[str, np.ndarray] | None) -> np.ndarray:
     """Broadband 1/3-octave levels (dB) (n_observers, STUDY_BANDS), energy-summed over the rotors
     (trim order), each absorbed at the mid-band frequencies over its hub distance: a rotor's
-    ``given_msp`` (Pa², e.g. BPM) when given, else Pegg's model."""
+    ``given_msp`` (Pa², e.g. BPM) when it holds the rotor, else Pegg's model."""
     centres = third_octave_bands(STUDY_BANDS)["center_hz"]
     bb_msp = np.zeros((geometry[0][0].size, STUDY_BANDS.size))
     for row, (dist, cos_t) in zip(rows, geometry):
         name = row["rotor"]
-        if given_msp is not None:
+        if given_msp is not None and name in given_msp:
             given = np.asarray(given_msp[name], dtype=float)
             if given.shape != bb_msp.shape:
                 raise ValueError(f"broadband_msp of rotor '{name}': expected shape {bb_msp.shape}, got {given.shape}")

@@ -11,7 +11,7 @@ shear_angle_rad, n_shocks). params: ``rotors``, ``obsset``, ``variant``; optiona
 the optional output ``figure``, they are drawn for the first rotor, thesis Fig. 6.3 kind); ``aircraft``
 and ``segment`` when known (checked against the inputs' provenance).
 
-Before computing: provenance of every input, every observer of the observer table in every rotor's
+Before computing: provenance of every input, unique observer ids, every observer of the observer table in every rotor's
 signals (and no other), the ``observer`` in the table, memory.
 """
 
@@ -54,7 +54,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
         check_provenance(rotor_path(inputs["signals"], name), {"stage": "acoustics", "rotor": name, "obsset": params["obsset"],
                                                                "variant": params["variant"], **same})
     trim = read_table(inputs["trim"], required=TRIM_COLUMNS, nonempty=True)
-    observers = read_table(inputs["observers"], required=OBSERVER_COLUMNS, nonempty=True, finite=True)
+    observers = read_table(inputs["observers"], required=OBSERVER_COLUMNS, nonempty=True, finite=True, unique="observer")
     if observer is not None and int(observer) not in set(observers["observer"].tolist()):
         raise ValueError(f"observer {observer}: not in {inputs['observers']} (observers "
                          f"{int(observers['observer'].min())} to {int(observers['observer'].max())})")

@@ -4,22 +4,27 @@ Sums the rotors' signals (HSI-processed ones where given), adds broadband (Pegg 
 air absorption when asked (nps.noise.metrics) and writes one row per observer and the band table.
 
 inputs: ``signals`` (acoustics directory), optional ``hsi`` (HSI directory), ``trim``, ``observers``;
-``disks`` (directory of the rotors' disk tables, the one the acoustics stage radiated) with BPM broadband.
+``disks`` (directory of the rotors' disk tables, the one the acoustics stage radiated) with BPM broadband (``bpm``, or
+``auto`` when a rotor is outside Pegg's data range).
 outputs: ``metrics`` (observer, elevation_deg, azimuth_deg, oaspl_db, oaspl_dba, bvispl_db, per-source
 levels …), ``bands`` (observer × source × band), ``figure`` (spectrum of the loudest observer).
 params: ``rotors``, ``solidity`` (rotor → σ), ``atmosphere`` (altitude_m, isa_delta_K,
-relative_humidity_pct), ``broadband`` (``pegg``, ``bpm`` or ``none``; true/false = pegg/none,
-:func:`nps.app.config.broadband_model`; written to the metadata as given), ``absorption`` (boolean),
+relative_humidity_pct), ``broadband`` (``pegg``, ``bpm``, ``none`` or ``auto``; true/false = pegg/none,
+:func:`nps.app.config.broadband_model`; written to the metadata as given; ``auto``: per rotor from the trim,
+:func:`nps.app.config.rotor_broadband_models`, BPM for the rotors outside Pegg's data range and Pegg for the
+others, recorded as ``broadband_rotors``), ``absorption`` (boolean),
 ``harmonics`` (first and last main-rotor BPF harmonic of BVISPL), with BPM ``rotor_configs`` (rotor →
 validated aircraft-configuration entry), ``aircraft``, ``segment``, ``obsset``, ``variant``.
 Pegg outside its helicopter main-rotor data range, and BPM on elements outside RP-1218's, are reported
-as warnings (stderr and the report). ``rotor_configs`` (rotor → validated rotor configuration) is also
+as warnings (stderr and the report) and, when there are any, recorded in both tables' metadata as
+``model_warnings`` (a list of the messages). ``rotor_configs`` (rotor → validated rotor configuration) is also
 used for Pegg's validity checks; optional ``allow_outside_validity``; optional ``tone_sum`` (the aircraft
 schema's ``tone_sum``: ``coherent`` or ``incoherent``, how the rotors' tones add; without it ``coherent``),
 recorded in the metadata when ``incoherent``.
 
-Before computing: provenance of every input, every observer in every rotor's signals, memory, and
-with Pegg broadband its peak frequency and mean lift coefficient (nps.app.validity.broadband_findings).
+Before computing: provenance of every input, unique observer ids, every observer in every rotor's signals, memory,
+and for the rotors with Pegg broadband its peak frequency and mean lift coefficient
+(nps.app.validity.broadband_findings).
 The metrics carry the observer table's validity warnings with their own: levels at observers
 outside the envelope are outside it too.
 """
@@ -33,7 +38,7 @@ import numpy as np
 from nps.app import validity
 from nps.core.atmosphere import isa
 from nps.noise.broadband.pegg import pegg_outside_range
-from nps.app.config import broadband_model
+from nps.app.config import broadband_model, rotor_broadband_models
 from nps.app.io import artifact_rows, check_provenance, read_signals, read_table, rotor_path, write_table
 from nps.noise.metrics import STUDY_BANDS, metrics_tables
 from nps.noise.observers import OBSERVER_STAGES
@@ -42,15 +47,16 @@ from nps.noise.signals import TONE_SUMS, check_observers
 from nps.rotor.trim import TRIM_STAGES, trim_row
 
 
-def _bpm_band_msp(inputs: dict, params: dict, trim, observers, atmosphere) -> tuple[dict, list[str]]:
-    """Rotor → BPM band MSP at the observers (ascending ids), and warnings for elements outside RP-1218's range."""
+def _bpm_band_msp(inputs: dict, params: dict, trim, observers, atmosphere, names) -> tuple[dict, list[str]]:
+    """Rotor → BPM band MSP at the observers (ascending ids) of the rotors ``names``, and warnings for elements
+    outside RP-1218's range."""
     from nps.noise.broadband.rotor import (DISK_INPUT_COLUMNS, disk_outside_bpm_range, medium_from_atmosphere,
                                      trimmed_rotor_broadband_msp)
 
     medium = medium_from_atmosphere(atmosphere)
     positions = observers.sort_values("observer", kind="mergesort")[["x_m", "y_m", "z_m"]].to_numpy(dtype=float)
     out, notes = {}, []
-    for name in params["rotors"]:
+    for name in names:
         disk = read_table(rotor_path(inputs["disks"], name), required=DISK_INPUT_COLUMNS)
         out[name] = trimmed_rotor_broadband_msp(disk, params["rotor_configs"][name], trim_row(trim, name, str(inputs["trim"])),
                                                 positions, medium, STUDY_BANDS)
@@ -60,6 +66,25 @@ def _bpm_band_msp(inputs: dict, params: dict, trim, observers, atmosphere) -> tu
                          "(Re_c, Mach ≤ 0.21, |α| ≤ 25.2°): extrapolated (docs/reference/bpm.md)")
     return out, notes
 
+
+def _broadband(inputs: dict, params: dict, models: dict, trim, observers, state) -> tuple[dict | None, list[str]]:
+    """BPM band MSP of the rotors ``models`` gives BPM (None without any) and the model-range warnings: Pegg
+    outside his data range for the Pegg rotors (suggesting BPM), BPM elements outside RP-1218's range."""
+    notes = []
+    for name in [name for name, model in models.items() if model == "pegg"]:
+        row = trim_row(trim, name, str(inputs["trim"]))
+        outside = pegg_outside_range(float(row["radius_m"]), float(row["omega_rad_s"]) * float(row["radius_m"]),
+                                     float(row["thrust_N"]))
+        notes += [f"Pegg: rotor '{name}': {m}; consider models.broadband: bpm, or auto (BPM for the rotors outside "
+                  "Pegg's range; docs/reference/broadband_metrics.md)" for m in outside]
+    bpm_rotors = [name for name, model in models.items() if model == "bpm"]
+    if not bpm_rotors:
+        return None, notes
+    if "disks" not in inputs or "rotor_configs" not in params:
+        raise ValueError(f"broadband '{params['broadband']}' needs the input 'disks' (the rotors' disk tables) "
+                         "and the param 'rotor_configs'")
+    bpm_msp, bpm_notes = _bpm_band_msp(inputs, params, trim, observers, state, bpm_rotors)
+    return bpm_msp, notes + bpm_notes
 
 
 def run(inputs: dict, outputs: dict, params: dict) -> str:
@@ -74,8 +99,10 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
             check_provenance(rotor_path(inputs[key], name), {"stage": stage, "rotor": name, "obsset": params["obsset"],
                                                              "variant": params["variant"], **same})
     trim = read_table(inputs["trim"], nonempty=True)
-    observers = read_table(inputs["observers"], nonempty=True, finite=True)
-    findings = validity.broadband_findings({"rotors": list(params["rotor_configs"].values())}, trim) if model == "pegg" else []
+    models = rotor_broadband_models(params["broadband"], trim, rotors)
+    observers = read_table(inputs["observers"], nonempty=True, finite=True, unique="observer")
+    pegg_configs = [config for name, config in params["rotor_configs"].items() if models.get(name, model) == "pegg"]
+    findings = validity.broadband_findings({"rotors": pegg_configs}, trim) if pegg_configs else []
     recorded = validity.recorded(findings, params, str(outputs["metrics"]))
     inherited = observer_meta.get("validity_warnings", [])
     if inherited or recorded:
@@ -93,18 +120,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     state = isa(atm["altitude_m"], atm["isa_delta_K"], atm["relative_humidity_pct"])
     atmosphere = state if params["absorption"] else None
     harmonics = tuple(int(h) for h in params["harmonics"])
-    notes, bpm_msp = [], None
-    if model == "pegg":
-        for name in rotors:
-            row = trim_row(trim, name, str(inputs["trim"]))
-            outside = pegg_outside_range(float(row["radius_m"]), float(row["omega_rad_s"]) * float(row["radius_m"]),
-                                         float(row["thrust_N"]))
-            notes += [f"Pegg: rotor '{name}': {m}; consider models.broadband: bpm (docs/reference/broadband_metrics.md)"
-                      for m in outside]
-    elif model == "bpm":
-        if "disks" not in inputs or "rotor_configs" not in params:
-            raise ValueError("broadband 'bpm' needs the input 'disks' (the rotors' disk tables) and the param 'rotor_configs'")
-        bpm_msp, notes = _bpm_band_msp(inputs, params, trim, observers, state)
+    bpm_msp, notes = _broadband(inputs, params, models, trim, observers, state)
     for note in notes:
         warnings.warn(note)
     tone_sum = params["tone_sum"] if "tone_sum" in params else TONE_SUMS[0]
@@ -113,7 +129,9 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     meta = {"aircraft": params["aircraft"], "segment": params["segment"], "obsset": params["obsset"],
             "variant": params["variant"], "bvispl_harmonics": list(harmonics), "absorption": params["absorption"],
             "broadband": params["broadband"], "hsi": hsi is not None,
-            **({"tone_sum": tone_sum} if tone_sum != TONE_SUMS[0] else {}), **recorded}
+            **({"tone_sum": tone_sum} if tone_sum != TONE_SUMS[0] else {}),
+            **({"broadband_rotors": models} if model == "auto" else {}), **recorded,
+            **({"model_warnings": notes} if notes else {})}
     write_table(table, outputs["metrics"], stage="metrics", metadata=meta)
     write_table(bands, outputs["bands"], stage="metrics", metadata=meta)
     if "figure" in outputs:

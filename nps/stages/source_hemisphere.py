@@ -7,8 +7,8 @@ with the aircraft, without air absorption, referred to the reference radius by s
 inputs: ``signals`` (acoustics directory of the far-field hemisphere set), optional ``hsi`` (its HSI
 directory: the HSI-processed tonal total replaces thickness + loading), ``trim``, ``observers``.
 outputs: ``hemisphere`` (Parquet, one row per observer × source × band).
-params: ``rotors``, ``solidity`` (rotor → σ), ``broadband`` (``pegg`` or ``none``, true/false; BPM is not
-available here yet: an error), ``reference_radius_m``,
+params: ``rotors``, ``solidity`` (rotor → σ), ``broadband`` (``pegg`` or ``none``, true/false; ``bpm`` and
+``auto`` are not available here yet: an error before any input is read), ``reference_radius_m``,
 ``aircraft``, ``segment``, ``obsset``, ``variant``.
 """
 
@@ -22,8 +22,9 @@ from nps.mission.source_hemisphere import source_hemisphere_table
 def run(inputs: dict, outputs: dict, params: dict) -> str:
     rotors = list(params["rotors"])
     model = broadband_model(params["broadband"])
-    if model == "bpm":
-        raise ValueError("source_hemisphere: models.broadband 'bpm' is not available for source hemispheres yet; use pegg or none")
+    if model in ("bpm", "auto"):
+        raise ValueError(f"source_hemisphere: models.broadband '{model}' is not available for source hemispheres yet "
+                         "(they hold Pegg's broadband or none; 'auto' would give some rotors BPM); use pegg or none")
     signals = read_signals(inputs["signals"], rotors)
     hsi = read_signals(inputs["hsi"], rotors) if "hsi" in inputs else None
     table = source_hemisphere_table(signals, read_table(inputs["observers"]), read_table(inputs["trim"]),

@@ -18,7 +18,8 @@ free), ``revolutions`` (wake age kept), ``steps_per_rev`` (vortex segments per r
 ``aircraft``, ``segment``; optional ``allow_outside_validity`` (campaign switch, default false).
 
 Before computing: provenance of the trim and loads artifacts (aircraft, segment, rotor), memory
-(nps.app.resources) and, per rotor, the wake length (nps.app.validity.wake_findings).
+(nps.app.resources) and, per rotor, the wake length (nps.app.validity.wake_findings), the loads summary's C_T and
+the wake's flow state from the disk table: every rotor before the first rotor's tables are written.
 """
 
 from __future__ import annotations
@@ -73,6 +74,10 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
                                            params, str(rotor_path(wake_dir, name)))
     disks = {name: read_table(paths[name][0], required=bvi.DISK_COLUMNS, nonempty=True) for name in names}
     summaries = {name: read_table(paths[name][1], required=SUMMARY_COLUMNS) for name in names}
+    for name in names:  # every rotor's disk grid (named by its file) and C_T before the first rotor is computed
+        bvi.disk_grid(disks[name], str(paths[name][0]))
+    cts = {name: bvi.summary_value(summaries[name], "ct", str(paths[name][1])) for name in names}
+    states = {name: bvi.wake_state(disks[name], trim_row(trim, name, str(inputs["trim"])), cts[name]) for name in names}
     check_memory(estimate_bytes("wake", {"n_psi": model.steps_per_rev, "n_r": disks[names[0]]["r_m"].nunique(),
                                           "wake_revolutions": model.revolutions}, n_rotors=len(names)),
                  f"{wake_dir}: wake of {model.revolutions:g} revolutions x {model.steps_per_rev} steps")
@@ -83,12 +88,11 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     report = []
     for name, rotor in params["rotors"].items():
         disk, inputs_of = disks[name], [str(paths[name][0]), str(paths[name][1]), str(inputs["trim"])]
-        ct = bvi.summary_value(summaries[name], "ct", str(paths[name][1]))
+        ct, state = cts[name], states[name]
         row = trim_row(trim, name, str(inputs["trim"]))
         meta = {"aircraft": params["aircraft"], "segment": params["segment"], "rotor": name, "wake_model": model.record(),
                 **warnings[name]}
         # wake geometry snapshots over one blade passage (the wake is periodic in 2π/B)
-        state = bvi.wake_state(disk, row, ct)
         motion = RotorMotion.from_trim_row(row)
         psi = wake.snapshot_azimuths(state.n_blades, step_deg)
         snapshot = (lambda p, n=name: freewake.wake_snapshot(coupled.solution, n, p)) if free else None

@@ -136,6 +136,17 @@ def rotor_edit(index: int, **fields):
     return edit
 
 
+UH60_AIRFRAME = [[0.0, 0.0, 1.0], [-3.0, 0.0, 0.2], [-6.0, 0.0, 0.0], [-8.0, 0.0, 0.3], [-9.93, 0.66, 1.66]]
+"""UH-60A-like airframe points of the bundled helicopter (body frame): fuselage top under the hub, tail boom at
+3, 6 and 8 m aft, the fin 0.7 m to port of the tail rotor's plane; all clear of the swept volumes."""
+
+
+def airframe_points(*extra: list):
+    def edit(a):
+        a["airframe_points_m"] = UH60_AIRFRAME + [list(p) for p in extra]
+    return edit
+
+
 CASES = [
     # --- one validity gate: python -m nps rotor applies the envelope before it writes -----------------------
     Case("rotor_speed_of_sound_in_km_s", lambda b, out: rotor_cmd(out, "--speed-of-sound-mps", "0.34"),
@@ -249,6 +260,21 @@ CASES = [
          ("ahead.parquet", "observer: expected unique ids", "[0] repeat")),
     Case("acoustics_one_observer_id_twice", lambda b, out: acoustics_cmd(b, out, observers=_observers(
         b, out, lambda df: df.assign(observer=[0, 1, 1]))), ("observer: expected unique ids", "[1]")),
+    Case("metrics_every_observer_id_0", lambda b, out: metrics_cmd(b, out, observers=_observers(b, out, lambda df: df.assign(observer=0))),
+         ("ahead.parquet", "observer: expected unique ids", "[0] repeat")),
+    Case("hsi_one_observer_id_twice", lambda b, out: hsi_cmd(b, out, observers=_observers(
+        b, out, lambda df: df.assign(observer=[0, 1, 1]))), ("ahead.parquet", "observer: expected unique ids", "[1]")),
+    # --- every rotor checked before the first rotor's tables are written ------------------------------------------
+    Case("loads_tail_refused_writes_no_main_loads", lambda b, out: loads_cmd(b, out, trim=_rewrite(
+        b.trim, out / "t" / "trim.parquet", lambda df: df.assign(thrust_N=np.where(df.rotor == "tail", 30 * df.thrust_N, df.thrust_N)))),
+         ("rotor 'tail'",)),
+    Case("wake_tail_summary_without_ct_writes_no_main_wake", lambda b, out: _wake_with_loads(b, out, lambda l: _rewrite(
+        b.loads / "tail_summary.parquet", l / "tail_summary.parquet", lambda df: df[df.quantity != "ct"])),
+         ("tail_summary.parquet", "quantity 'ct'")),
+    Case("wake_tail_disk_without_rows_at_an_azimuth_writes_no_main_wake", lambda b, out: _wake_with_loads(b, out, lambda l: _rewrite(
+        b.loads / "tail.parquet", l / "tail.parquet", lambda df: df.iloc[1:])),
+         ("l/tail.parquet", "psi_rad/r_m do not form a full grid")),
+    Case("metrics_auto_without_disks", lambda b, out: metrics_cmd(b, out, "--broadband", "auto"), ("--broadband auto needs --disks",)),
     # --- memory of observer sets before allocation --------------------------------------------------------------
     Case("observers_hemisphere_1e4_x_1e5", lambda b, out: observers_cmd(b, out, _hemisphere(10_000, 100_000)),
          ("config.yaml", "observer_sets.s", "1,000,000,000 observers", "needs an estimated")),
@@ -261,6 +287,16 @@ CASES = [
          ("rotors[0]", "rotor 'main': 100 blades", "solidity", "expected <= 0.5")),
     Case("tail_40_blades", flight(30.0, 0.0, rotor_edit(1, n_blades=40)), ("rotors[1]", "rotor 'tail': 40 blades")),
     Case("main_chord_in_mm", flight(30.0, 0.0, rotor_edit(0, chord_m=580.0)), ("rotors[0]", "rotor 'main'", "chord_m")),
+    # --- rotor-airframe clearance: airframe points outside the swept volumes -------------------------------------
+    Case("tail_boom_under_the_flapping_main_blades", flight(30.0, 0.0, airframe_points([-7.0, 0.0, 0.5])),
+         ("helicopter.yaml", "airframe_points_m[5]", "rotor 'main'", "6.92 m from its axis", "1.66 m from its plane",
+          "expected the airframe clear")),
+    Case("fin_in_the_tail_rotor_disk", flight(30.0, 0.0, airframe_points([-9.33, 0.188, 1.832])),
+         ("airframe_points_m[5]", "rotor 'tail'", "0.2 m from its plane", "at least one chord 0.23 m")),
+    Case("airframe_point_in_the_main_hub_plane", flight(30.0, 0.0, airframe_points([-4.0, 2.0, 1.6])),
+         ("airframe_points_m[5]", "rotor 'main'", "0.409 m from its plane")),
+    Case("airframe_point_of_two_coordinates", flight(30.0, 0.0, airframe_points([-4.0, 2.0])),
+         ("helicopter.yaml", "airframe_points_m")),
     # --- solver failures name the likely inputs --------------------------------------------------------------------
     Case("loads_trim_omega_in_rpm", lambda b, out: loads_cmd(b, out, trim=_rewrite(
         b.trim, out / "t" / "trim.parquet", lambda df: df.assign(omega_rad_s=np.where(df.rotor == "main", df.omega_rad_s * 30 / np.pi,
@@ -281,6 +317,15 @@ def _signals_copy(b, out: Path) -> str:
 
 def _loads_copy(b, out: Path) -> str:
     return str(shutil.copytree(b.loads, out / "l"))
+
+
+def _wake_with_loads(b, out: Path, edit: Callable[[Path], object]) -> list[str]:
+    """``python -m nps wake`` on a copy of the chain's loads directory changed by ``edit(directory)``."""
+    argv = wake_cmd(b, out)
+    loads = Path(_loads_copy(b, out))
+    edit(loads)
+    argv[argv.index("--loads-dir") + 1] = str(loads)
+    return argv
 
 
 def _wake_into_loads(b, out: Path) -> list[str]:
@@ -406,9 +451,13 @@ def _job(tmp_path: Path, trim: Path) -> SimpleNamespace:
 
 
 def _run_job(job, capsys) -> tuple[str, str]:
+    from unittest import mock
+
     from nps.stages.job import run_job
 
-    with pytest.raises(SystemExit) as exit_:
+    # run_job sizes numba's thread pool through the environment (a job is a fresh process); restore it, or
+    # numba refuses to change the size of this test process's running pool later
+    with mock.patch.dict(os.environ), pytest.raises(SystemExit) as exit_:
         run_job(job, "loads")
     assert exit_.value.code == 1
     return Path(job.log[0]).read_text(), capsys.readouterr().err
@@ -468,3 +517,56 @@ def test_broadband_auto_chooses_bpm_where_pegg_is_outside_its_range(chain):
     assert rotor_broadband_models("auto", trim, ["main", "tail"]) == {"main": "pegg", "tail": "bpm"}
     assert rotor_broadband_models("pegg", trim, ["main", "tail"]) == {"main": "pegg", "tail": "pegg"}
     assert rotor_broadband_models(False, trim, ["main"]) == {"main": "none"}
+
+
+def _bands_msp(path: Path) -> np.ndarray:
+    bands = pd.read_parquet(path)
+    return 10.0 ** (bands[bands.source == "broadband"].sort_values(["observer", "band"]).level_db.to_numpy() / 10.0)
+
+
+def _one_rotor_metrics(b, out: Path, rotor: str, *extra: str) -> int:
+    """``python -m nps metrics`` on the chain's ``rotor`` alone (its trim row and signals)."""
+    trim = _rewrite(b.trim, out / "trim.parquet", lambda df: df[df.rotor == rotor].reset_index(drop=True))
+    (out / "sig").mkdir(parents=True)
+    shutil.copy(b.signals / f"{rotor}.parquet", out / "sig" / f"{rotor}.parquet")
+    return nps_main(metrics_cmd(b, out, "--rotor", rotor, *extra, trim=trim, signals=out / "sig"))
+
+
+def test_broadband_auto_on_the_helicopter_is_pegg_on_main_and_bpm_on_tail(chain, tmp_path):
+    """``--broadband auto`` on the bundled helicopter (segment 2): the main rotor gets Pegg, the tail rotor BPM; the
+    broadband bands are the energy sum of Pegg on the main rotor alone and BPM on the tail rotor alone (1e-9 dB).
+    The metadata keep ``auto`` with the choice per rotor; Pegg on both rotors records the tail's range warnings."""
+    from nps.app.io import read_metadata
+
+    assert nps_main(metrics_cmd(chain, tmp_path / "auto", "--broadband", "auto", "--disks", str(chain.loads))) == 0
+    meta = read_metadata(tmp_path / "auto" / "m.parquet")
+    assert meta["broadband"] == "auto" and meta["broadband_rotors"] == {"main": "pegg", "tail": "bpm"}
+    assert not any(w.startswith("Pegg") for w in meta.get("model_warnings", []))
+    assert _one_rotor_metrics(chain, tmp_path / "main", "main", "--broadband", "pegg") == 0
+    assert _one_rotor_metrics(chain, tmp_path / "tail", "tail", "--broadband", "bpm", "--disks", str(chain.loads)) == 0
+    np.testing.assert_allclose(10 * np.log10(_bands_msp(tmp_path / "auto" / "b.parquet")),
+                               10 * np.log10(_bands_msp(tmp_path / "main" / "b.parquet") + _bands_msp(tmp_path / "tail" / "b.parquet")),
+                               atol=1e-9)
+    assert nps_main(metrics_cmd(chain, tmp_path / "pegg", "--broadband", "pegg")) == 0
+    warned = read_metadata(tmp_path / "pegg" / "b.parquet")["model_warnings"]
+    assert any("Pegg: rotor 'tail'" in w and "radius_m=1.55" in w for w in warned) and not any("'main'" in w for w in warned)
+    assert "model_warnings" not in read_metadata(tmp_path / "main" / "m.parquet")
+
+
+def test_uh60_airframe_points_clear_the_bundled_helicopter(tmp_path):
+    from nps.app.config import load_aircraft
+
+    assert load_aircraft(aircraft_file(tmp_path, airframe_points()))["airframe_points_m"] == UH60_AIRFRAME
+
+
+def test_loads_refusal_of_the_tail_rotor_leaves_no_main_rotor_table(chain, tmp_path, capsys, monkeypatch):
+    """A validity finding on the second rotor (the tail's flap angle, made to exceed 15°) refuses the loads job
+    before the main rotor's tables are written."""
+    from nps.app import validity
+
+    real = validity.loads_findings
+    monkeypatch.setattr(validity, "loads_findings", lambda name, summary: real(name, summary) + (
+        [validity.check_flap_angle(0.3, 0.0, 0.0, name)] if name == "tail" else []))
+    check_refused(Case("loads_tail_flap_angle", lambda b, out: loads_cmd(b, out), ("rotor 'tail': largest flap angle",)),
+                  chain, tmp_path, capsys)
+    assert not (tmp_path / "loads").exists() or not any((tmp_path / "loads").iterdir())

@@ -1,7 +1,8 @@
-"""``models.broadband: pegg | bpm | none`` in the metrics stage (nps.stages.metrics, nps.app.config.broadband_model,
+"""``models.broadband: pegg | bpm | none | auto`` in the metrics stage (nps.stages.metrics, nps.app.config.broadband_model,
 nps.noise.broadband.rotor.trimmed_rotor_broadband_msp)."""
 
 import copy
+import warnings
 
 import numpy as np
 import pandas as pd
@@ -23,11 +24,12 @@ OBSERVERS_G = np.array([[31.0, 2.0, -40.0], [1.0, 32.0, 3.5], [-45.0, -10.0, -20
 
 
 def test_broadband_model_spellings():
-    assert [broadband_model(v) for v in (True, False, "pegg", "bpm", "none")] == ["pegg", "none", "pegg", "bpm", "none"]
+    assert [broadband_model(v) for v in (True, False, "pegg", "bpm", "none", "auto")] == ["pegg", "none", "pegg", "bpm", "none",
+                                                                                         "auto"]
     with pytest.raises(ValueError, match="models.broadband"):
         broadband_model("maybe")
     config = read_yaml("config/config.yaml")
-    for value in ("pegg", "bpm", "none", True, False):
+    for value in ("pegg", "bpm", "none", "auto", True, False):
         validate(dict(config, models=dict(config["models"], broadband=value)), "config", "c.yaml")
     with pytest.raises(ConfigError, match="models.broadband"):
         validate(dict(config, models=dict(config["models"], broadband="bmp")), "config", "c.yaml")
@@ -128,7 +130,6 @@ def test_pegg_spellings_agree_and_warn_outside_the_data_range(tmp_path):
     write_table(trim, tmp_path / "trim.parquet", stage="trim")
     with pytest.warns(UserWarning, match="thrust_N=5000 outside Pegg"):
         _run(tmp_path, aircraft, "pegg")
-    import warnings
 
     with warnings.catch_warnings():
         warnings.simplefilter("error")
@@ -158,3 +159,92 @@ def test_source_hemisphere_refuses_bpm_before_reading():
 
     with pytest.raises(ValueError, match="'bpm' is not available for source hemispheres"):
         source_hemisphere({"signals": "missing"}, {}, {"rotors": ["main"], "broadband": "bpm"})
+
+
+# --- auto: BPM for the rotors outside Pegg's data range, Pegg for the others ---------------------------------------
+
+TAIL_HUB = HUB + np.array([-9.0, 0.5, 0.3])
+
+
+def _two_rotor_inputs(root, names):
+    """Inputs of the stage for the helicopter's rotors ``names`` (main inside Pegg's range at 50 kN, tail at
+    R = 1.55 m outside it): trim rows, the same synthetic signals on one time grid, hovering disks."""
+    aircraft = copy.deepcopy(load_aircraft("config/aircraft/helicopter.yaml"))
+    configs = {r["name"]: r for r in aircraft["rotors"]}
+    rows = []
+    for name in names:
+        rotor, hub = configs[name], HUB if name == "main" else TAIL_HUB
+        rows.append({"rotor": name, "n_blades": np.int32(rotor["n_blades"]), "radius_m": rotor["radius_m"],
+                     "omega_rad_s": rotor["omega_rad_s"], "thrust_N": 5.0e4 if name == "main" else 4.0e3,
+                     "ct": 0.005 if name == "main" else 0.004, "hub_x_m": hub[0], "hub_y_m": hub[1], "hub_z_m": hub[2],
+                     **{f"r_gh_{i}{j}": R_GH[i, j] for i in range(3) for j in range(3)}})
+    write_table(complete_trim(pd.DataFrame(rows)), root / "trim.parquet", stage="trim")
+    observers = pd.DataFrame({"observer": np.int32([2, 0, 1]), "x_m": OBSERVERS_G[:, 0], "y_m": OBSERVERS_G[:, 1],
+                              "z_m": OBSERVERS_G[:, 2], "vx_mps": 0.0, "vy_mps": 0.0, "vz_mps": 0.0,
+                              "elevation_deg": 0.0, "azimuth_deg": 0.0})
+    write_table(observers, root / "obs.parquet", stage="observers")
+    n = 256
+    time = np.arange(n) * (2 * np.pi / configs["main"]["omega_rad_s"]) / n
+    p = np.cos(2 * np.pi * 4 * np.arange(n) / n)
+    for name in names:
+        signal = pd.DataFrame({"observer": np.repeat(np.int32([0, 1, 2]), 2 * n),
+                               "group": np.tile(np.repeat(["loading", "thickness"], n), 3),
+                               "time_s": np.tile(time, 6), "p_Pa": np.tile(p, 6)})
+        write_table(signal, root / "sig" / f"{name}.parquet", stage="acoustics")
+        write_table(_disk(configs[name]), root / "loads" / f"{name}.parquet", stage="loads")
+    return aircraft
+
+
+def _run_rotors(root, names, broadband):
+    aircraft = _two_rotor_inputs(root, names)
+    inputs = {"signals": root / "sig", "trim": root / "trim.parquet", "observers": root / "obs.parquet",
+              "disks": root / "loads"}
+    outputs = {"metrics": root / "m.parquet", "bands": root / "b.parquet"}
+    params = {"rotors": list(names), "solidity": rotor_solidities(aircraft),
+              "atmosphere": {"altitude_m": 0.0, "isa_delta_K": 0.0, "relative_humidity_pct": 70.0},
+              "broadband": broadband, "absorption": True, "harmonics": [7, 40], "aircraft": "helicopter",
+              "segment": "seg1", "obsset": "obs", "variant": "base",
+              "rotor_configs": {r["name"]: r for r in aircraft["rotors"]}}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        run(inputs, outputs, params)
+    bands = read_table(outputs["bands"])
+    msp = 10.0 ** (bands[bands.source == "broadband"].sort_values(["observer", "band"]).level_db.to_numpy() / 10.0)
+    return msp, read_metadata(outputs["metrics"]), read_metadata(outputs["bands"])
+
+
+def test_auto_gives_bpm_to_the_rotor_outside_pegg_and_pegg_to_the_other(tmp_path):
+    """``auto`` on main + tail: the broadband bands are the energy sum of Pegg on the main rotor alone and BPM on
+    the tail rotor alone (1e-9 dB); the metadata keep ``auto`` and record the choice per rotor."""
+    auto, meta, band_meta = _run_rotors(tmp_path / "both", ["main", "tail"], "auto")
+    main_pegg, main_meta, _ = _run_rotors(tmp_path / "main", ["main"], "pegg")
+    tail_bpm, _, _ = _run_rotors(tmp_path / "tail", ["tail"], "bpm")
+    tail_pegg, tail_meta, _ = _run_rotors(tmp_path / "tail_pegg", ["tail"], "pegg")
+    np.testing.assert_allclose(10 * np.log10(auto), 10 * np.log10(main_pegg + tail_bpm), atol=1e-9)
+    assert not np.allclose(10 * np.log10(auto), 10 * np.log10(main_pegg + tail_pegg), atol=0.1)
+    assert meta["broadband"] == "auto" and meta["broadband_rotors"] == {"main": "pegg", "tail": "bpm"}
+    assert band_meta["broadband_rotors"] == meta["broadband_rotors"]
+    # model-range warnings in the metadata: Pegg on the tail rotor is outside his range; none for the main rotor
+    assert any("Pegg: rotor 'tail'" in w and "radius_m=1.55" in w for w in tail_meta["model_warnings"]), tail_meta
+    assert "model_warnings" not in main_meta and "broadband_rotors" not in main_meta
+    assert not any(w.startswith("Pegg") for w in meta.get("model_warnings", []))
+
+
+def test_auto_without_disks_names_the_input(tmp_path):
+    aircraft = _two_rotor_inputs(tmp_path, ["main", "tail"])
+    params = {"rotors": ["main", "tail"], "solidity": rotor_solidities(aircraft),
+              "atmosphere": {"altitude_m": 0.0, "isa_delta_K": 0.0, "relative_humidity_pct": 70.0},
+              "broadband": "auto", "absorption": False, "harmonics": [7, 40], "aircraft": "helicopter",
+              "segment": "seg1", "obsset": "obs", "variant": "base",
+              "rotor_configs": {r["name"]: r for r in aircraft["rotors"]}}
+    inputs = {"signals": tmp_path / "sig", "trim": tmp_path / "trim.parquet", "observers": tmp_path / "obs.parquet"}
+    with pytest.raises(ValueError, match="broadband 'auto' needs the input 'disks'"):
+        run(inputs, {"metrics": tmp_path / "m.parquet", "bands": tmp_path / "b.parquet"}, params)
+    assert not (tmp_path / "m.parquet").exists()
+
+
+def test_source_hemisphere_refuses_auto_before_reading():
+    from nps.stages.source_hemisphere import run as source_hemisphere
+
+    with pytest.raises(ValueError, match="'auto' is not available for source hemispheres"):
+        source_hemisphere({"signals": "missing"}, {}, {"rotors": ["main"], "broadband": "auto"})
