@@ -1,6 +1,7 @@
 # NPS study workflow: trim -> loads -> wake (+ BVI loads) -> acoustics -> hsi -> metrics -> figures.
-# `snakemake -j2 all` runs the campaign of config/config.yaml; `snakemake -j2 rigs` the rigs of config/rigs/
-# (rig.smk); `snakemake --report report.html` builds the HTML report. Rules live in workflow/rules/, one file per stage.
+# `snakemake -j2 all` runs the campaign of config/config.yaml (or of `--configfile FILE`); `snakemake -j2 rigs`
+# the rigs of config/rigs/ (rig.smk); `snakemake -j2 study_NAME` the design study config/studies/NAME.yaml
+# (designs.smk); `snakemake --report report.html` builds the HTML report. Rules live in workflow/rules/, one file per stage.
 import os
 import sys
 
@@ -9,9 +10,11 @@ import sys
 os.environ.update(MPLBACKEND="Agg")
 os.environ.setdefault("NUMBA_CACHE_DIR", os.path.join(workflow.basedir, ".numba_cache"))
 
-CONFIG_FILE = "config/config.yaml"
-# A YAML syntax error in the campaign file stops here with the file, line and column and no traceback
-# (Snakemake's own `configfile:` parser names neither); the content is validated in common.smk.
+# The campaign file: config/config.yaml, or the one `--configfile FILE` names (then it alone, not merged
+# with the bundled one). A YAML syntax error stops here with the file, line and column and no traceback
+# (Snakemake's own parser names neither); the content is validated in common.smk.
+CLI_CONFIG_FILES = [str(f) for f in workflow.overwrite_configfiles or []]
+CONFIG_FILE = CLI_CONFIG_FILES[-1] if CLI_CONFIG_FILES else "config/config.yaml"
 if os.path.exists(CONFIG_FILE):
     from nps.app.config import ConfigError, read_yaml
 
@@ -22,7 +25,14 @@ if os.path.exists(CONFIG_FILE):
         raise SystemExit(1)
 
 
-configfile: CONFIG_FILE
+if not CLI_CONFIG_FILES:
+
+    configfile: CONFIG_FILE
+
+
+# `--config study=NAME` adds the design study config/studies/NAME.yaml to the targets of `all` (designs.smk);
+# it is not a campaign field
+REQUESTED_STUDY = config.pop("study", None)
 
 
 report: "workflow/report/workflow.rst"
@@ -49,3 +59,4 @@ include: "workflow/rules/study.smk"
 include: "workflow/rules/footprint.smk"
 include: "workflow/rules/certification.smk"
 include: "workflow/rules/rig.smk"
+include: "workflow/rules/designs.smk"

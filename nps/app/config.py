@@ -14,7 +14,7 @@ import functools
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Iterator
+from typing import Any, Iterator, Mapping
 
 import jsonschema
 import yaml
@@ -249,9 +249,11 @@ def yaml_error_text(exc: yaml.YAMLError) -> str:
     return f"{where}not valid YAML: {problem}" + (f" ({context})" if context else "")
 
 
-def load_aircraft(path: str | Path) -> dict:
-    """Read and validate one aircraft file, with its own cross checks; schema defaults filled."""
-    data = fill_defaults(validate(read_yaml(path), "aircraft", path), load_schema("aircraft"))
+def load_aircraft(path: str | Path, document: Any = None) -> dict:
+    """Read and validate one aircraft file, with its own cross checks; schema defaults filled. ``document``:
+    the file's content as read (e.g. a design-study variant of it), validated as if read from ``path``."""
+    document = read_yaml(path) if document is None else copy.deepcopy(document)
+    data = fill_defaults(validate(document, "aircraft", path), load_schema("aircraft"))
     problems = []
     names = [rotor["name"] for rotor in data["rotors"]]
     for index, rotor in enumerate(data["rotors"]):
@@ -272,6 +274,8 @@ def load_aircraft(path: str | Path) -> dict:
         problems += solidity_problems(data["rotors"]) or _hub_problems(data["rotors"])
     if not problems:
         problems += disk_crossing_problems(data["rotors"])
+    if not problems and "airframe_points_m" in data:
+        problems += airframe_clearance_problems(data["rotors"], data["airframe_points_m"])
     if not any(rotor["role"] == "lift" for rotor in data["rotors"]):
         problems.append(("rotors", "expected at least one rotor with role 'lift'"))
     if sum(rotor["role"] == "antitorque" for rotor in data["rotors"]) > 1:
@@ -387,6 +391,33 @@ def disk_crossing_problems(rotors: list[dict]) -> list[tuple[str, str]]:
     return problems
 
 
+def airframe_clearance_problems(rotors: list[dict], points: list) -> list[tuple[str, str]]:
+    """Airframe points (``airframe_points_m``, body frame) inside the volume a rotor's blades sweep: between its
+    root cutout and its radius from its axis, and within r sin(15°) + c/2 (the flapping margin of
+    :func:`disk_crossing_problems`) or one chord c of its plane. One problem per point, naming the first rotor."""
+    import numpy as np
+
+    from nps.rotor.geometry import RotorGeometry
+
+    problems = []
+    for i, point in enumerate(points):
+        for rotor in rotors:
+            hub, axis = _disk_frame(rotor)
+            rel = np.asarray(point, dtype=float) - hub
+            axial = float(rel @ axis)
+            radial = float(np.linalg.norm(rel - axial * axis))
+            chord = RotorGeometry.from_config(rotor).chord_m
+            margin = max(radial * math.sin(FLAP_MARGIN_RAD) + chord / 2.0, chord)
+            if rotor["root_cutout_m"] <= radial <= rotor["radius_m"] and abs(axial) <= margin:
+                problems.append((f"airframe_points_m[{i}]", (
+                    f"point {[float(c) for c in point]} lies inside the volume rotor '{rotor['name']}' sweeps: {radial:.3g} m from its "
+                    f"axis (blades from {rotor['root_cutout_m']} to {rotor['radius_m']} m), {abs(axial):.3g} m from its plane "
+                    f"(margin {margin:.3g} m: ±15° flapping + c/2, at least one chord {chord:.3g} m); expected the airframe "
+                    f"clear of the blade paths: check the point and rotor '{rotor['name']}' hub_position_m, radius_m")))
+                break
+    return problems
+
+
 def campaign_value_problems(config: dict) -> list[tuple[str, str]]:
     """Ordering constraints of the campaign config the code relies on (not expressible in the schema)."""
     problems = []
@@ -481,9 +512,10 @@ def aircraft_rotor(aircraft: dict, name: str, path: str | Path) -> dict:
     return rotor
 
 
-def load_mission(path: str | Path) -> dict:
-    """Read and validate one mission file; schema defaults filled."""
-    data = fill_defaults(validate(read_yaml(path), "mission", path), load_schema("mission"))
+def load_mission(path: str | Path, document: Any = None) -> dict:
+    """Read and validate one mission file; schema defaults filled (``document``: as :func:`load_aircraft`)."""
+    document = read_yaml(path) if document is None else copy.deepcopy(document)
+    data = fill_defaults(validate(document, "mission", path), load_schema("mission"))
     problems = []
     ids = [segment["id"] for segment in data["segments"]]
     for index, segment in enumerate(data["segments"]):
@@ -503,12 +535,12 @@ def load_mission(path: str | Path) -> dict:
     return data
 
 
-BROADBAND_MODELS = ("pegg", "bpm", "none")
+BROADBAND_MODELS = ("pegg", "bpm", "none", "auto")
 
 
 def broadband_model(value) -> str:
-    """The broadband model named by a ``models.broadband`` value: ``pegg``, ``bpm`` or ``none``; the
-    boolean spelling of earlier configurations maps true → ``pegg``, false → ``none``."""
+    """The broadband model named by a ``models.broadband`` value: ``pegg``, ``bpm``, ``none`` or ``auto`` (per
+    rotor, :func:`rotor_broadband_models`); the boolean spelling of earlier configurations maps true → ``pegg``, false → ``none``."""
     if value is True or value is False:
         return "pegg" if value else "none"
     if value not in BROADBAND_MODELS:
@@ -627,9 +659,14 @@ def _footprint_problems(config: dict, mission: dict, all_ids: list[str]) -> list
     return problems
 
 
-def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", root: str | Path = ".") -> Campaign:
+def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", root: str | Path = ".",
+                  documents: Mapping[str, Any] | None = None, paths: Mapping[str, Any] | None = None) -> Campaign:
     """Validate the campaign configuration and every file it names, with cross references; the
-    :class:`Campaign` holds them with every schema default filled (:func:`fill_defaults`)."""
+    :class:`Campaign` holds them with every schema default filled (:func:`fill_defaults`). ``documents``
+    (optional) replaces files' contents as read: ``{"aircraft": {name: document}, "mission": document}``
+    (the variants of a design study, nps.app.designs), validated under the files' names; ``paths`` (optional)
+    names files elsewhere than under ``config_dir``: ``{"aircraft": {name: path}, "mission": path}`` (nps.api)."""
+    documents, paths = documents or {}, paths or {}
     written = copy.deepcopy(validate(config, "config", config_file))
     config = fill_defaults(written, load_schema("config"))
     _raise(config_file, campaign_value_problems(config))
@@ -638,16 +675,16 @@ def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", 
     problems = []
     aircraft = {}
     for index, name in enumerate(config["campaign"]["aircraft"]):
-        path = config_dir / "aircraft" / f"{name}.yaml"
+        path = Path(paths["aircraft"][name]) if name in paths.get("aircraft", {}) else config_dir / "aircraft" / f"{name}.yaml"
         if not path.exists():
             problems.append((f"campaign.aircraft[{index}]", f"expected an aircraft file {path}, none exists"))
             continue
-        aircraft[name] = load_aircraft(path)
-    mission_path = config_dir / "missions" / f"{config['campaign']['mission']}.yaml"
+        aircraft[name] = load_aircraft(path, documents.get("aircraft", {}).get(name))
+    mission_path = Path(paths["mission"]) if "mission" in paths else config_dir / "missions" / f"{config['campaign']['mission']}.yaml"
     if not mission_path.exists():
         problems.append(("campaign.mission", f"expected a mission file {mission_path}, none exists"))
     _raise(config_file, problems)
-    mission = load_mission(mission_path)
+    mission = load_mission(mission_path, documents.get("mission"))
     all_ids = [segment["id"] for segment in mission["segments"]]
     segments = config["campaign"].get("segments", all_ids)
     for index, segment_id in enumerate(segments):

@@ -42,16 +42,12 @@ def digests(results: Path, drop: tuple[str, ...] = ()) -> dict[str, str]:
 
 
 def cpu_class() -> str:
-    """The CPU class whose results are bit-identical: the machine and NumPy's float64 SIMD dispatch level
-    (``x86_64-avx512_skx``, ``x86_64-avx2`` or ``x86_64-baseline``; other machines by name)."""
-    from numpy._core._multiarray_umath import __cpu_features__ as features
+    """The CPU class whose results are bit-identical: the machine and the CPU model numba compiles its kernels
+    for (``x86_64-znver5``, ``x86_64-skylake-avx512``, ...; :func:`nps.core.jit.host_cpu_name`). NumPy's SIMD
+    dispatch follows the same model, so one class reproduces both."""
+    from nps.core.jit import host_cpu_name
 
-    machine = platform.machine()
-    if machine != "x86_64":
-        return machine
-    if features.get("AVX512_SKX"):
-        return f"{machine}-avx512_skx"
-    return f"{machine}-avx2" if features.get("AVX2") and features.get("FMA3") else f"{machine}-baseline"
+    return f"{platform.machine()}-{host_cpu_name()}"
 
 
 def manifest_path(directory: Path, name: str) -> Path:

@@ -21,3 +21,11 @@ def kernel(function=None, *, parallel: bool = False, inline: bool = False):
     if function is None:
         return lambda f: numba.njit(**options)(f)
     return numba.njit(**options)(function)
+
+
+def host_cpu_name() -> str:
+    """The CPU model LLVM compiles numba's kernels for on this machine (e.g. ``znver5``, ``skylake-avx512``):
+    kernels compiled for different models may round differently in the last bit."""
+    import llvmlite.binding as llvm
+
+    return numba.config.CPU_NAME or str(llvm.get_host_cpu_name())

@@ -48,7 +48,8 @@ def html_table(table: pd.DataFrame, columns: Mapping[str, str], classes: Mapping
     for i, (_, row) in enumerate(table.iterrows()):
         cells = "".join(_cell(row[c], classes[c][i] if c in classes else "") for c in columns)
         rows.append(f"<tr>{cells}</tr>")
-    return f'<div class="scroll"><table><thead><tr>{head}</tr></thead><tbody>{"".join(rows)}</tbody></table></div>'
+    body = "\n".join(rows)  # a row per line: the report's reStructuredText parser limits the line length
+    return f'<div class="scroll"><table><thead><tr>{head}</tr></thead><tbody>\n{body}\n</tbody></table></div>'
 
 
 def write_page(title: str, sections: Sequence[tuple[str, str]], path: str | os.PathLike, intro: str = "") -> Path:

@@ -60,6 +60,8 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
 
     for metric, key, name in (("sel_db", "sel_figure", "SEL"), ("lamax_db", "lamax_figure", "L_Amax")):
         footprint_figure(fp.grid, path.knot_position_m, fp.segments, metric,
-                         f"{aircraft}: {params['mission']['name']} mission {name}", outputs[key])
+                         f"{aircraft}: {params['mission']['name']} mission {name}", outputs[key],
+                         segment_names={segment["id"]: segment["name"] for segment in params["mission"]["segments"]
+                                        if "name" in segment})
     return (f"{len(fp.grid)} receivers, {len(fp.microphones)} microphones, legs {fp.segments}\n"
             f"{fp.areas.to_string(index=False)}\n{fp.microphones.to_string(index=False)}")

@@ -1,8 +1,9 @@
 """Snakemake adapter: run one stage for a ``script:`` job, with its log and thread count.
 
 Workflow scripts are two lines, ``from nps.stages.job import run_job; run_job(snakemake, "<stage>")``.
-The job's named inputs, outputs and params (less the ``code`` hash that only triggers reruns) and
-its wildcards become the stage's ``inputs``, ``outputs`` and ``params``. numba's thread pool is sized
+The job's named inputs, outputs and params (less the ``code`` hash that only triggers reruns; the
+``job`` param, :func:`nps.app.plan.stage_params`, is unpacked) and its wildcards become the stage's
+``inputs``, ``outputs`` and ``params``. numba's thread pool is sized
 to the job's ``threads`` before anything imports numba. The stage's report goes to the job's
 ``log:`` file; an error is written there too and to stderr, and the job exits with status 1: an
 expected error (a refused input, :func:`expected_errors`) as one line ``error: stage '<stage>': ...``,
@@ -57,7 +58,8 @@ def run_job(snakemake, stage: str) -> None:
     """Run ``stage`` (a key of :data:`nps.stages.STAGES`) for a Snakemake script job."""
     os.environ["NUMBA_NUM_THREADS"] = str(max(1, int(snakemake.threads)))
     os.environ["OPENBLAS_NUM_THREADS"] = "1"  # BLAS sums in one order: bit-reproducible spectra
-    params = {key: value for key, value in snakemake.params.items() if key != "code"}
+    params = {key: value for key, value in snakemake.params.items() if key not in ("code", "job")}
+    params.update(snakemake.params.get("job", {}))  # the planned params (nps.app.plan.stage_params)
     wildcards = dict(snakemake.wildcards.items())
     clash = sorted(set(params) & set(wildcards))
     if clash:

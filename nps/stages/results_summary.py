@@ -2,7 +2,8 @@
 
 Per aircraft × segment: the segment's id and mission name, the hemisphere maxima of OASPL, OASPL(A) and
 BVISPL with where they are (named in the map convention: az 0° behind, 90° on the main rotor's advancing
-side, 180° ahead; the straight-down point once, whatever the azimuth), the rotor power at trim, the
+side, 180° ahead; the straight-down point once, whatever the azimuth), the rotor power at trim (the
+blade-element loads' ``power_W``, as the design studies' trade tables), the
 loudest distinct directions, the validity warnings and the figures drawn of it. The levels are the
 aircraft's summary table's (``results/{aircraft}/summary.parquet``); the page adds nothing computed
 anew but the power sum and the distinct loudest directions. Where the campaign certifies, the EPNL
@@ -17,16 +18,17 @@ from pathlib import Path
 
 import pandas as pd
 
-from nps.app.io import read_table
+from nps.app.io import read_table, rotor_path
 
 LEVELS = (("oaspl", "OASPL (dB)"), ("dba", "OASPL(A) (dBA)"), ("bvispl", "BVISPL (dB)"))
 FIGURE_SUFFIXES = (".png", ".csv")
 
 
-def segment_row(summary: pd.Series, segment_name: str, trim: pd.DataFrame, metrics: pd.DataFrame, loudest: int,
+def segment_row(summary: pd.Series, segment_name: str, powers_W: dict, metrics: pd.DataFrame, loudest: int,
                 warnings: str) -> dict:
-    """One row of the results summary from the aircraft's summary row of a segment, its trim table and its
-    hemisphere metrics (the summary's ``levels_variant``)."""
+    """One row of the results summary from the aircraft's summary row of a segment, its rotors' power (rotor →
+    W: the blade-element loads at trim, as the design studies' trade tables) and its hemisphere metrics (the
+    summary's ``levels_variant``)."""
     from nps.plots.maps import direction_name, distinct_directions
 
     row = {"aircraft": summary["aircraft"], "segment": summary["segment"], "segment_name": segment_name,
@@ -35,13 +37,19 @@ def segment_row(summary: pd.Series, segment_name: str, trim: pd.DataFrame, metri
         az, el = float(summary[f"max_{label}_azimuth_deg"]), float(summary[f"max_{label}_elevation_deg"])
         row.update({f"max_{label}_db": float(summary[f"max_{label}_db"]), f"max_{label}_azimuth_deg": az,
                     f"max_{label}_elevation_deg": el, f"max_{label}_where": direction_name(az, el)})
-    row["rotor_power_kW"] = float(trim["power_W"].sum()) / 1e3
-    row["rotor_powers"] = "; ".join(f"{r} {p / 1e3:.1f} kW" for r, p in zip(trim["rotor"], trim["power_W"]))
+    row["rotor_power_kW"] = float(sum(powers_W.values())) / 1e3
+    row["rotor_powers"] = "; ".join(f"{r} {p / 1e3:.1f} kW" for r, p in powers_W.items())
     top = distinct_directions(metrics, "oaspl_db").head(loudest)
     row["loudest_directions"] = "; ".join(f"{direction_name(a, e)}: {v:.1f} dB"
                                           for a, e, v in zip(top["azimuth_deg"], top["elevation_deg"], top["oaspl_db"]))
     row["validity_warnings"] = warnings
     return row
+
+
+def loads_power_W(loads_dir: str, rotor: str) -> float:
+    """A rotor's power (W) in its loads summary (``loads/{rotor}_summary.parquet``: quantity, value, unit)."""
+    table = read_table(rotor_path(loads_dir, rotor, "_summary"))
+    return float(table.loc[table["quantity"] == "power_W", "value"].iloc[0])
 
 
 def figures_of(results: Path, aircraft: str, segment: str | None) -> list[str]:
@@ -66,7 +74,9 @@ def summary_table(inputs: dict, params: dict) -> pd.DataFrame:
         for segment in params["segments"]:
             line = summary[summary["segment"] == segment].iloc[0]
             noted = warnings.loc[warnings["segment"] == segment, "validity_warnings"]
-            row = segment_row(line, params["segment_names"][segment], read_table(inputs[f"trim_{aircraft}_{segment}"]),
+            trim = read_table(inputs[f"trim_{aircraft}_{segment}"])
+            powers = {rotor: loads_power_W(inputs[f"loads_{aircraft}_{segment}"], rotor) for rotor in trim["rotor"]}
+            row = segment_row(line, params["segment_names"][segment], powers,
                               read_table(inputs[f"metrics_{aircraft}_{segment}"]), int(params["loudest"]),
                               str(noted.iloc[0]) if len(noted) else "")
             row["figures"] = "; ".join(figures_of(results, aircraft, segment))

@@ -16,7 +16,7 @@ MODULES = sorted(
 # The layer of each top-level package (docs/reference/architecture.md): a module imports only from its own
 # package and from packages of a lower layer; packages of one layer know nothing of each other.
 LAYERS = {"core": 0, "rotor": 1, "wake": 2, "noise": 2, "mission": 3, "rig": 3, "app": 4, "plots": 5,
-          "api": 6, "stages": 6, "cli": 7, "__main__": 8}
+          "stages": 6, "api": 7, "cli": 7, "__main__": 8}
 PHYSICS_PACKAGES = ("core", "rotor", "wake", "noise", "mission", "rig")
 MAX_FUNCTION_LINES = 80
 
@@ -186,6 +186,6 @@ def test_every_stage_has_a_command_and_a_run_function(stage):
     from nps.stages import stage_function
 
     assert callable(stage_function(stage))
-    figure_or_study = {"rotor_figures", "hsi_figure", "study_maps", "rotor_maps", "bvi_hotspot", "summary", "results_summary",
-                       "carpet"}
+    figure_or_study = {"rotor_figures", "hsi_figure", "study_maps", "rotor_maps", "bvi_hotspot", "summary", "results_summary", "carpet",
+                       "trade"}
     assert stage in commands() or stage in figure_or_study

@@ -65,7 +65,11 @@ def write_campaign(root: Path) -> tuple[dict, dict, pd.DataFrame]:
         path = root / "heli" / segment
         path.mkdir(parents=True)
         metrics.to_parquet(path / "metrics.parquet")
-        pd.DataFrame({"rotor": ["main", "tail"], "power_W": [4.0e5 + k, 2.0e4]}).to_parquet(path / "trim.parquet")
+        pd.DataFrame({"rotor": ["main", "tail"], "power_W": [3.9e5, 1.9e4]}).to_parquet(path / "trim.parquet")
+        (path / "loads").mkdir()
+        for rotor, power in (("main", 4.0e5 + k), ("tail", 2.0e4)):  # the blade-element power at trim is the one shown
+            pd.DataFrame({"quantity": ["thrust_N", "power_W"], "value": [1.0, power], "unit": ["N", "W"]}).to_parquet(
+                path / "loads" / f"{rotor}_summary.parquet")
         (path / "figures").mkdir()
         (path / "figures" / "hotspot_bvi.png").write_bytes(b"png")
         row = {"aircraft": "heli", "segment": segment, "levels_variant": "bvi"}
@@ -74,7 +78,8 @@ def write_campaign(root: Path) -> tuple[dict, dict, pd.DataFrame]:
             row.update({f"max_{label}_db": spot["value"], f"max_{label}_azimuth_deg": spot["azimuth_deg"],
                         f"max_{label}_elevation_deg": spot["elevation_deg"]})
         rows.append(row)
-        inputs.update({f"trim_heli_{segment}": path / "trim.parquet", f"metrics_heli_{segment}": path / "metrics.parquet"})
+        inputs.update({f"trim_heli_{segment}": path / "trim.parquet", f"metrics_heli_{segment}": path / "metrics.parquet",
+                       f"loads_heli_{segment}": path / "loads"})
     summary = pd.DataFrame(rows)
     summary.to_parquet(root / "heli" / "summary.parquet")
     pd.DataFrame({"segment": ["seg2", "seg3"], "validity_warnings": ["", "wake too short"]}).to_csv(root / "heli" / "summary.csv")
@@ -112,9 +117,9 @@ def test_results_summary_equals_the_summary_tables(tmp_path):
 
 def test_the_report_front_page_names_the_summary():
     front = (REPO / "workflow/report/workflow.rst").read_text()
-    rules = (REPO / "workflow/rules/study.smk").read_text()
+    rules = (REPO / "workflow/rules/study.smk").read_text() + (REPO / "workflow/rules/common.smk").read_text()
     assert "results_summary.html" in front and ":file:" in front  # inserted into the front page
-    assert '`1. Results summary`_' in front and 'SUMMARY_CATEGORY = "1. Results summary"' in rules
+    assert '"1. Results summary"' in front and 'SUMMARY_CATEGORY = "1. Results summary"' in rules
     assert "showResultInfo" in front  # the figure index links every result
     assert (REPO / "workflow/report/results_summary.rst").is_file()
     assert sorted(["1. Results summary", "Design studies", "coaxial", "helicopter"],

@@ -77,14 +77,20 @@ def test_campaign_reproduces_the_committed_manifest(campaign_dir):
     # warning, the manifest predates it: byte-identical once that one metadata key is removed
     warned = sorted(n for n in manifest if b"nps.validity_warnings" in (pq.read_schema(results / n).metadata or {}))
     assert warned == sorted(n for n in manifest if re.fullmatch(r"\w+/seg3/(wake|bvi)/\w+\.parquet", n)), warned
-    problems = compare(digests(results, drop=("nps.validity_warnings",)), manifest)
+    # the metrics tables of the helicopter (Pegg on its tail rotor, outside his data range) carry their model-range
+    # warnings (nps.model_warnings), also newer than the manifest
+    modelled = sorted(n for n in manifest if b"nps.model_warnings" in (pq.read_schema(results / n).metadata or {}))
+    assert modelled and all(re.fullmatch(r"\w+/seg\d+/metrics/\w+\.parquet", n) for n in modelled), modelled
+    assert any(n.startswith("helicopter/") for n in modelled), modelled
+    problems = compare(digests(results, drop=("nps.validity_warnings", "nps.model_warnings")), manifest)
     assert not problems, problems[:20]
     summary = (results / "helicopter/summary.csv").read_text()
     assert "rotor 'main': wake_revolutions = 2 is outside the validity limit" in summary
 
 
 def test_failing_job_writes_its_error_into_its_log(tmp_path):
-    """A job that fails leaves its error and traceback in its log: file (where Snakemake points the user)."""
+    """A job that fails on its input (a trim without a solution) leaves its error in its log: file (where
+    Snakemake points the user), as one line without a traceback (an expected refusal, nps.stages.job)."""
     import shutil
 
     shutil.copytree(REPO / "config", tmp_path / "config")
@@ -95,7 +101,7 @@ def test_failing_job_writes_its_error_into_its_log(tmp_path):
     result = _snakemake(tmp_path, "-j1", "results/helicopter/seg2/trim.parquet")
     assert result.returncode != 0
     log = (tmp_path / "results/logs/trim/helicopter/seg2.log").read_text()
-    assert "stage 'trim' failed" in log and "Traceback" in log and "nps/stages/trim.py" in log
+    assert "error: stage 'trim':" in log and "did not converge" in log and "Traceback" not in log
 
 
 def test_second_run_does_nothing(campaign_dir):

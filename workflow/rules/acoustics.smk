@@ -10,11 +10,7 @@ rule observers:
     output:
         observers=f"{BASE}/observers/{{obsset}}.parquet",
     params:
-        spec=lambda wildcards: config["observer_sets"][wildcards.obsset],
-        rotor_roles=lambda wildcards: {r["name"]: r["role"] for r in aircraft_config(wildcards)["rotors"]},
-        reference_radius_m=lambda wildcards: aircraft_config(wildcards)["rotors"][0]["radius_m"],
-        rotors=rotor_configs,
-        allow_outside_validity=ALLOW_OUTSIDE_VALIDITY,
+        job=plan("observers"),
         code=code("observers"),
     log:
         log_path("observers", "{aircraft}/{segment}/{obsset}"),
@@ -38,11 +34,7 @@ rule acoustics:
         # one signal table per rotor: {rotor}.parquet
         signals=directory(signals_dir("acoustics")),
     params:
-        rotors=job_rotors,
-        thickness=setting("models", "thickness"),
-        chord_fractions=setting("acoustics", "dual_compact_chord_fractions"),
-        samples_per_rev=setting("resolution", "samples_per_rev"),
-        hinge_offsets_m=lambda wildcards: {r["name"]: r["hinge_offset_m"] for r in aircraft_config(wildcards)["rotors"]},
+        job=plan("acoustics"),
         code=code("acoustics"),
     log:
         log_path("acoustics", "{aircraft}/{segment}/{obsset}_{variant}"),

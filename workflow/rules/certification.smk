@@ -34,14 +34,7 @@ rule certification:
             labels={"aircraft": "{aircraft}", "figure": "certification EPNL, limits, margins (picture)"},
         ),
     params:
-        mission=CAMPAIGN.mission,
-        max_mass_kg=lambda wildcards: aircraft_config(wildcards)["gross_weight_kg"],
-        segments=lambda wildcards: config["certification"]["segments"],
-        vne_mps=lambda wildcards: config["certification"]["vne_mps"],
-        approach_min_speed_mps=lambda wildcards: config["certification"]["approach_min_speed_mps"],
-        ground=lambda wildcards: config["footprint"]["ground"],
-        ground_as_written=lambda wildcards: CAMPAIGN.as_written("footprint.ground"),
-        absorption=config["models"]["absorption"],
+        job=plan("certification"),
         code=code("certification"),
     log:
         log_path("certification", "{aircraft}"),

@@ -1,10 +1,13 @@
 # Shared definitions: validated campaign, wildcard constraints, paths and the code digest of each stage.
 # Every job runs workflow/scripts/stage.py, which calls nps.stages.<name of the rule>.run (rule name = stage name).
+import dataclasses
 import sys
-
+from functools import lru_cache
 from pathlib import Path
 
 from nps.app.config import ConfigError, broadband_model, load_campaign, load_rig
+from nps.app.designs import load_study
+from nps.app.plan import CaseConfig, stage_params
 from nps.rig import RIG_AIRCRAFT
 from nps.stages.code import stage_digest
 from nps.noise.metrics import rotor_solidities
@@ -15,7 +18,7 @@ import nps.app.resources as nps_resources
 # Configuration paths are relative to the working directory (`snakemake -d DIR` runs a campaign elsewhere).
 # A configuration error stops the run before any job with the validator's message alone.
 try:
-    CAMPAIGN = load_campaign(config, workflow.configfiles[0] if workflow.configfiles else "config", root=".")
+    CAMPAIGN = load_campaign(config, CONFIG_FILE, root=".")
 except ConfigError as error:
     sys.stderr.write(f"NPS configuration error: {error}\n")
     raise SystemExit(1)
@@ -93,6 +96,20 @@ def aircraft_config(wildcards):
     return CAMPAIGN.aircraft[wildcards.aircraft]
 
 
+def case_config(wildcards):
+    """The job's case (nps.app.plan.CaseConfig): a rig's rotor and settings, or the campaign's aircraft in the
+    job's segment (none for an aircraft-level job)."""
+    if is_rig(wildcards):
+        return CaseConfig(aircraft_config(wildcards), settings(wildcards))
+    return CaseConfig.from_campaign(CAMPAIGN, wildcards.aircraft, wildcards.get("segment"))
+
+
+def plan(stage):
+    """Rule param ``job``: the stage's params (nps.app.plan.stage_params), which the job adapter passes on
+    with the wildcards (nps.stages.job)."""
+    return lambda wildcards: stage_params(stage, case_config(wildcards), wildcards.get("obsset"))
+
+
 def rotor_names(aircraft):
     return CAMPAIGN.rotor_names(aircraft)
 
@@ -154,11 +171,11 @@ def antitorque_rotors(aircraft):
 # used by metrics.smk
 def metrics_signal_inputs(wildcards):
     """Pressure-signal directory of the aircraft (and its HSI-processed version in HSI segments; the disk
-    tables the signals were radiated from with BPM broadband)."""
+    tables the signals were radiated from with BPM broadband, or ``auto``: BPM for the rotors outside Pegg's range)."""
     inputs = {"signals": signals_dir("acoustics").format(**wildcards)}
     if not is_rig(wildcards) and wildcards.segment in CAMPAIGN.hsi_segments():
         inputs["hsi"] = signals_dir("hsi").format(**wildcards)
-    if broadband_model(settings(wildcards)["models"]["broadband"]) == "bpm":
+    if broadband_model(settings(wildcards)["models"]["broadband"]) in ("bpm", "auto"):
         inputs["disks"] = variant_disks(wildcards)
     return inputs
 
@@ -258,3 +275,84 @@ def rig_targets(rig):
 
 
 # ---- resources: mem_mb of the jobs whose arrays scale with the resolution (nps.app.resources) ----
+
+
+# used by study.smk
+def segment_names():
+    """Segment id -> the mission's name of it, for the campaign's segments."""
+    return {s: CAMPAIGN.segment(s)["name"] for s in CAMPAIGN.segments}
+
+
+def hemisphere_radius_m(aircraft):
+    """Radius (m) of the hemisphere observer set: radius_R times the reference (first) rotor's radius."""
+    return config["observer_sets"]["hemisphere"]["radius_R"] * CAMPAIGN.aircraft[aircraft]["rotors"][0]["radius_m"]
+
+
+SUMMARY_CATEGORY = "1. Results summary"
+
+
+def results_summary_inputs(wildcards):
+    inputs = {}
+    for a in CAMPAIGN.aircraft:
+        inputs[f"summary_{a}"] = f"{RESULTS}/{a}/summary.parquet"
+        inputs[f"summary_csv_{a}"] = f"{RESULTS}/{a}/summary.csv"
+        if "certification" in config:
+            inputs[f"certification_{a}"] = f"{RESULTS}/{a}/certification/certification.parquet"
+        for s in CAMPAIGN.segments:
+            inputs[f"trim_{a}_{s}"] = f"{RESULTS}/{a}/{s}/trim.parquet"
+            inputs[f"loads_{a}_{s}"] = f"{RESULTS}/{a}/{s}/loads"
+            inputs[f"metrics_{a}_{s}"] = hemisphere_metrics(a, s)
+    inputs["targets"] = [t for t in ALL_TARGETS if any(t.startswith(f"{RESULTS}/{a}/") for a in CAMPAIGN.aircraft)]
+    return inputs
+
+
+# used by designs.smk: design studies (config/studies/NAME.yaml, nps.app.designs)
+STUDIES_DIR = Path("config/studies")
+STUDY_NAMES = sorted(p.stem for p in STUDIES_DIR.glob("*.yaml"))
+STUDY_CACHE = f"{RESULTS}/studies/cache"
+
+
+@lru_cache(maxsize=None)
+def design_study(name):
+    """The validated, expanded study (nps.app.designs.DesignStudy); a configuration error stops the run."""
+    try:
+        return load_study(STUDIES_DIR / f"{name}.yaml", root=".")
+    except ConfigError as error:
+        sys.stderr.write(f"NPS study configuration error: {error}\n")
+        raise SystemExit(1)
+
+
+def study_dir(name):
+    return f"{RESULTS}/studies/{name}"
+
+
+def study_rows(wildcards):
+    """The case rows of a study: one table per design x aircraft (a row per segment)."""
+    study = design_study(wildcards.study)
+    return {f"{d.id}_{a}": f"{study_dir(study.name)}/{d.id}/{a}.parquet" for d in study.designs for a in study.aircraft}
+
+
+def case_params(wildcards):
+    study = design_study(wildcards.study)
+    design = study.design(wildcards.design)
+    return {"campaign": dataclasses.asdict(design.campaign), "segments": study.segments,
+            "design_values": {"design": design.id, **design.values},
+            "observer_sets": study.spec["observer_sets"], "products": study.spec["products"], "cache_dir": STUDY_CACHE}
+
+
+CASE_STAGES = ("trim", "loads", "wake", "observers", "acoustics", "hsi", "metrics")
+
+
+def case_mem_mb(wildcards, attempt):
+    """The largest of the chain's stage requests (the stages run one after the other)."""
+    return max(job_mem_mb(stage)(wildcards, attempt) for stage in CASE_STAGES)
+
+
+def case_runtime(wildcards, attempt):
+    """The chain's stage requests summed over the study's segments."""
+    n_segments = len(design_study(wildcards.study).segments)
+    return n_segments * sum(job_runtime(stage)(wildcards, attempt) for stage in CASE_STAGES)
+
+
+def study_targets(name):
+    return [f"{study_dir(name)}/trade.parquet"]

@@ -10,12 +10,7 @@ rule source_hemisphere:
     output:
         hemisphere=f"{BASE}/source_hemisphere.parquet",
     params:
-        rotors=lambda wildcards: rotor_names(wildcards.aircraft),
-        solidity=lambda wildcards: rotor_solidities(aircraft_config(wildcards)),
-        broadband=config["models"]["broadband"],
-        reference_radius_m=lambda wildcards: config["footprint"]["reference_radius_R"] * aircraft_config(wildcards)["rotors"][0]["radius_m"],
-        obsset=lambda wildcards: source_set(),
-        variant=lambda wildcards: product_variant(wildcards.segment),
+        job=plan("source_hemisphere"),
         code=code("source_hemisphere"),
     log:
         log_path("source_hemisphere"),
@@ -59,13 +54,7 @@ rule footprint:
             labels={"aircraft": "{aircraft}", "figure": "L_Amax footprint"},
         ),
     params:
-        mission=CAMPAIGN.mission,
-        grid=lambda wildcards: config["footprint"]["grid"],
-        microphones=lambda wildcards: config["footprint"]["microphones"],
-        ground=lambda wildcards: config["footprint"]["ground"],
-        ground_as_written=lambda wildcards: CAMPAIGN.as_written("footprint.ground"),
-        atmosphere=config["atmosphere"],
-        absorption=config["models"]["absorption"],
+        job=plan("footprint"),
         code=code("footprint"),
     log:
         log_path("footprint", "{aircraft}"),

@@ -12,7 +12,7 @@ rule hsi:
         # {rotor}.parquet (HSI signals) and {rotor}_diagnostics.parquet per rotor
         hsi=directory(signals_dir("hsi")),
     params:
-        rotors=lambda wildcards: rotor_names(wildcards.aircraft),
+        job=plan("hsi"),
         code=code("hsi"),
     log:
         log_path("hsi", "{aircraft}/{segment}/{obsset}_{variant}"),
@@ -42,6 +42,7 @@ rule hsi_figure:
     params:
         rotors=lambda wildcards: rotor_names(wildcards.aircraft),
         description=lambda wildcards: f"observers {config['observer_sets'][wildcards.obsset]['radius_R']:g} R ahead",
+        segment_name=lambda wildcards: CAMPAIGN.segment(wildcards.segment)["name"],
         code=code("hsi_figure"),
     log:
         log_path("hsi_figure", "{aircraft}/{segment}/{obsset}_{variant}"),

@@ -9,10 +9,7 @@ rule loads:
         # {rotor}.parquet (disk table), {rotor}_summary.parquet, {rotor}_history.parquet per rotor
         loads=directory(f"{BASE}/loads"),
     params:
-        rotors=rotor_configs,
-        n_psi=setting("resolution", "n_psi"),
-        n_r=setting("resolution", "n_r"),
-        allow_outside_validity=setting("campaign", "allow_outside_validity"),
+        job=plan("loads"),
         code=code("loads"),
     log:
         log_path("loads"),

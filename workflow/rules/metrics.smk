@@ -17,15 +17,7 @@ rule metrics:
             labels={"aircraft": "{aircraft}", "segment": "{segment}", "figure": "spectrum, loudest {obsset} observer ({variant})"},
         ),
     params:
-        rotors=job_rotors,
-        # rotor name -> solidity: the only aircraft-configuration slice the metrics depend on
-        solidity=lambda wildcards: rotor_solidities(aircraft_config(wildcards)),
-        atmosphere=setting("atmosphere"),
-        broadband=setting("models", "broadband"),
-        absorption=setting("models", "absorption"),
-        harmonics=setting("acoustics", "bvispl_harmonics"),
-        rotor_configs=rotor_configs,
-        allow_outside_validity=setting("campaign", "allow_outside_validity"),
+        job=plan("metrics"),
         code=code("metrics"),
     log:
         log_path("metrics", "{aircraft}/{segment}/{obsset}_{variant}"),

@@ -3,16 +3,6 @@
 # Figure titles name each segment by its mission name and the hemisphere by its radius in R and metres.
 
 
-def segment_names():
-    """Segment id -> the mission's name of it, for the campaign's segments."""
-    return {s: CAMPAIGN.segment(s)["name"] for s in CAMPAIGN.segments}
-
-
-def hemisphere_radius_m(aircraft):
-    """Radius (m) of the hemisphere observer set: radius_R times the reference (first) rotor's radius."""
-    return config["observer_sets"]["hemisphere"]["radius_R"] * CAMPAIGN.aircraft[aircraft]["rotors"][0]["radius_m"]
-
-
 rule study_maps:
     # every map family of one aircraft in one job (one matplotlib start-up)
     input:
@@ -169,23 +159,6 @@ ALL_TARGETS.extend(
 # CSV, the page the report opens on (workflow/report/workflow.rst inserts it; category "1. Results summary"
 # sorts first in the report's menu). It reads the summary tables and lists the figures, so every other target
 # of the campaign's aircraft is an input: the job runs last.
-SUMMARY_CATEGORY = "1. Results summary"
-
-
-def results_summary_inputs(wildcards):
-    inputs = {}
-    for a in CAMPAIGN.aircraft:
-        inputs[f"summary_{a}"] = f"{RESULTS}/{a}/summary.parquet"
-        inputs[f"summary_csv_{a}"] = f"{RESULTS}/{a}/summary.csv"
-        if "certification" in config:
-            inputs[f"certification_{a}"] = f"{RESULTS}/{a}/certification/certification.parquet"
-        for s in CAMPAIGN.segments:
-            inputs[f"trim_{a}_{s}"] = f"{RESULTS}/{a}/{s}/trim.parquet"
-            inputs[f"metrics_{a}_{s}"] = hemisphere_metrics(a, s)
-    inputs["targets"] = [t for t in ALL_TARGETS if any(t.startswith(f"{RESULTS}/{a}/") for a in CAMPAIGN.aircraft)]
-    return inputs
-
-
 rule results_summary:
     input:
         unpack(results_summary_inputs),
@@ -209,7 +182,7 @@ rule results_summary:
         radius_R=config["observer_sets"]["hemisphere"]["radius_R"],
         radius_m={a: hemisphere_radius_m(a) for a in CAMPAIGN.aircraft},
         loudest=config["outputs"]["spectra_loudest"],
-        results=RESULTS,
+        results=lambda wildcards: RESULTS,  # the results directory the figure paths are relative to
         code=code("results_summary"),
     log:
         log_path("results_summary", "campaign"),

@@ -11,10 +11,7 @@ rule tones:
         tones_csv=f"{BASE}/tones/{{obsset}}_{{variant}}_selected.csv",
         spectra=f"{BASE}/tones/{{obsset}}_{{variant}}_spectra.parquet",
     params:
-        rotors=lambda wildcards: rotor_names(wildcards.aircraft),
-        harmonics=config["outputs"]["tone_harmonics"],
-        loudest=config["outputs"]["spectra_loudest"],
-        observers=config["outputs"]["spectra_observers"],
+        job=plan("tones"),
         code=code("tones"),
     log:
         log_path("tones", "{aircraft}/{segment}/{obsset}_{variant}"),

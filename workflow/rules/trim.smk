@@ -5,13 +5,7 @@ rule trim:
     output:
         trim=f"{BASE}/trim.parquet",
     params:
-        aircraft_config=aircraft_config,
-        speeds=lambda wildcards: CAMPAIGN.segment(wildcards.segment)["aircraft"][wildcards.aircraft],
-        atmosphere=config["atmosphere"],
-        allow_outside_validity=ALLOW_OUTSIDE_VALIDITY,
-        # disk resolution of the loads that solve the speeds of rpm-controlled rotors (nps.rotor.control.trim_rotor_speeds)
-        n_psi=config["resolution"]["n_psi"],
-        n_r=config["resolution"]["n_r"],
+        job=plan("trim"),
         code=code("trim"),
     log:
         log_path("trim"),

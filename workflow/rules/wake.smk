@@ -14,11 +14,7 @@ rule wake:
         # {rotor}.parquet (BVI disk table) per rotor
         bvi=directory(f"{BASE}/bvi"),
     params:
-        rotors=rotor_configs,
-        wake=setting("wake"),
-        revolutions=setting("resolution", "wake_revolutions"),
-        steps_per_rev=setting("resolution", "n_psi"),
-        allow_outside_validity=setting("campaign", "allow_outside_validity"),
+        job=plan("wake"),
         code=code("wake"),
     log:
         log_path("wake"),

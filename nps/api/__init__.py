@@ -1,0 +1,12 @@
+"""Python API for notebooks and scripts: :class:`Case` (one aircraft, mission and configuration; run a
+segment) and :class:`Study` (a design study file; run its variants), returning pandas DataFrames.
+
+Both run the workflow's own stage functions (``nps.stages.<stage>.run`` with the parameters of
+:mod:`nps.app.plan`) through the stage cache of :mod:`nps.stages.case`, so a case computed by the
+workflow, a study or a notebook is computed once. Example: examples/tip_speed_sweep.py.
+"""
+
+from nps.api.case import Case, CaseResult
+from nps.api.study import Study, StudyResult
+
+__all__ = ["Case", "CaseResult", "Study", "StudyResult"]

@@ -1,0 +1,171 @@
+"""Trade tables of design studies (docs/reference/studies.md): one row per design × aircraft × segment with
+the design variables, rotor performance and noise maxima, the Pareto front of noise against power, and the
+sensitivity of each metric to each variable.
+
+Performance is the blade-element solution at trim (``loads/{rotor}_summary``): thrust, torque, power,
+C_T and C_T/σ; the tip Mach number is the hover tip Mach number Ω R / a of the trim table. Noise is the
+maximum over an observer set of OASPL, A-weighted OASPL and BVISPL of the load variant with BVI wherever it
+is computed (as the campaign summary, :func:`nps.app.study.segment_summary`).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Mapping, Sequence
+
+import numpy as np
+import pandas as pd
+
+from nps.app.config import Campaign
+from nps.app.study import hotspot
+from nps.noise.metrics import rotor_solidities
+
+NOISE_METRICS = {"oaspl_db": "max_oaspl_db", "oaspl_dba": "max_dba_db", "bvispl_db": "max_bvispl_db"}
+SOURCE_LEVELS = ("thickness", "loading", "broadband")  # per-source OASPL of the metrics (oaspl_<source>_db)
+TEN_PERCENT = math.log(1.1)
+
+
+def noise_column(obsset: str, column: str) -> str:
+    """Trade-table column of an observer set's maximum: ``max_dba_db`` (hemisphere), ``<set>_max_dba_db`` else."""
+    name = NOISE_METRICS[column]
+    return name if obsset == "hemisphere" else f"{obsset}_{name}"
+
+
+def case_row(campaign: Campaign, aircraft: str, segment: str, design: Mapping, trim: pd.DataFrame,
+             loads_summaries: Mapping[str, pd.DataFrame], metrics: Mapping[str, pd.DataFrame],
+             warnings: Sequence[str]) -> pd.DataFrame:
+    """The one-row trade table of a case: ``design`` (label → value) first, then aircraft, segment and its
+    name, per rotor ``<rotor>_{thrust_N, torque_Nm, power_W, ct, ct_sigma, omega_rad_s, tip_speed_mps,
+    tip_mach}``, ``power_W`` (all rotors), per observer set the maxima (:func:`noise_column`) with the
+    azimuth and elevation of the loudest observer, the maxima of the per-source OASPL
+    (``max_{thickness,loading,broadband}_db``) and of the thickness OASPL in the hub plane (elevation 0,
+    ``in_plane_max_thickness_db``) where the set has such observers, and ``validity_warnings`` ("; "-joined)."""
+    row: dict[str, object] = {}
+    row.update(aircraft=aircraft, segment=segment, segment_name=campaign.segment(segment)["name"])
+    solidity = rotor_solidities(campaign.aircraft[aircraft])
+    total = 0.0
+    for name, table in loads_summaries.items():
+        values = dict(zip(table["quantity"], table["value"]))
+        state = trim.loc[trim["rotor"] == name].iloc[0]
+        row[f"{name}_thrust_N"] = float(values["thrust_N"])
+        row[f"{name}_torque_Nm"] = float(values["torque_Nm"])
+        row[f"{name}_power_W"] = float(values["power_W"])
+        row[f"{name}_ct"] = float(values["ct"])
+        row[f"{name}_ct_sigma"] = float(values["ct"]) / solidity[name]
+        row[f"{name}_omega_rad_s"] = float(state["omega_rad_s"])
+        row[f"{name}_tip_speed_mps"] = float(state["omega_rad_s"] * state["radius_m"])
+        row[f"{name}_tip_mach"] = float(state["tip_mach"])
+        total += float(values["power_W"])
+    row["power_W"] = total
+    for obsset, table in metrics.items():
+        prefix = "" if obsset == "hemisphere" else f"{obsset}_"
+        for source in SOURCE_LEVELS:  # broadband: where a broadband model is on
+            if f"oaspl_{source}_db" in table:
+                row[f"{prefix}max_{source}_db"] = float(table[f"oaspl_{source}_db"].max())
+        in_plane = table["elevation_deg"].abs() < 1e-9
+        if in_plane.any():
+            row[f"{prefix}in_plane_max_thickness_db"] = float(table.loc[in_plane, "oaspl_thickness_db"].max())
+        for column in NOISE_METRICS:
+            spot = hotspot(table, column)
+            name = noise_column(obsset, column)
+            row[name] = spot["value"]
+            row[f"{name[:-3]}_azimuth_deg"] = spot["azimuth_deg"]
+            row[f"{name[:-3]}_elevation_deg"] = spot["elevation_deg"]
+    row["validity_warnings"] = "; ".join(warnings)
+    clashes = sorted(set(design) & set(row))
+    if clashes:
+        raise ValueError(f"design-variable labels {clashes} are trade-table columns; choose other labels")
+    return pd.DataFrame([{**design, **row}])
+
+
+def certification_columns(table: pd.DataFrame, summary: pd.DataFrame) -> pd.DataFrame:
+    """``table`` (one aircraft's rows) with its certification (nps.stages.certification summary) on every
+    row: ``epnl_<procedure>_db`` (mean of the three microphones), ``margin_<procedure>_db`` (limit − EPNL,
+    positive: below the limit) and ``min_margin_db``."""
+    table = table.copy()
+    for procedure, epnl, margin in summary[["procedure", "epnl_db", "margin_db"]].itertuples(index=False):
+        table[f"epnl_{procedure}_db"] = float(epnl)
+        table[f"margin_{procedure}_db"] = float(margin)
+    table["min_margin_db"] = float(summary["margin_db"].min())
+    return table
+
+
+def footprint_columns(table: pd.DataFrame, areas: pd.DataFrame) -> pd.DataFrame:
+    """``table`` (one aircraft's rows) with its mission footprint's contour areas (nps.stages.footprint
+    ``areas``) on every row: ``<metric>_<level>db_area_km2`` (e.g. ``sel_db_80db_area_km2``; a contour that
+    reaches the grid edge is a lower bound, ``footprint_open`` lists those)."""
+    table = table.copy()
+    for metric, level, area in areas[["metric", "level_db", "area_km2"]].itertuples(index=False):
+        table[f"{metric}_{level:g}db_area_km2"] = float(area)
+    opened = areas[areas["open"]]
+    table["footprint_open"] = "; ".join(f"{m} {l:g} dB" for m, l in opened[["metric", "level_db"]].itertuples(index=False))
+    return table
+
+
+def pareto_front(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Boolean mask of the points no other point beats in both ``x`` and ``y`` (lower is better; a point
+    equal in one and lower in the other beats it)."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    better_or_equal = (x[None, :] <= x[:, None]) & (y[None, :] <= y[:, None])
+    strictly = (x[None, :] < x[:, None]) | (y[None, :] < y[:, None])
+    return ~np.any(better_or_equal & strictly, axis=1)
+
+
+def mark_pareto(table: pd.DataFrame, noise: str = "max_dba_db", power: str = "power_W") -> pd.DataFrame:
+    """``table`` with a ``pareto`` column: on the front of ``noise`` against ``power`` within each aircraft
+    × segment."""
+    table = table.copy()
+    table["pareto"] = False
+    for _, group in table.groupby(["aircraft", "segment"], sort=False):
+        table.loc[group.index, "pareto"] = pareto_front(group[power].to_numpy(), group[noise].to_numpy())
+    return table
+
+
+def sensitivity(table: pd.DataFrame, variables: Mapping[str, float], metrics: Sequence[str]) -> pd.DataFrame:
+    """Change of each metric per +10 % of each variable, per aircraft × segment: least squares of the metric
+    on ln(variable / base value) over the designs (all variables at once: the main effects of a factorial),
+    times ln 1.1. Levels in dB change by that many dB; ``power_W`` is fitted as ln(power) and reported in
+    percent. ``variables``: label → base value (variables with values of both signs are skipped: no
+    relative change). Columns: aircraft, segment, metric, variable, change_per_10pct, unit."""
+    usable = [v for v, base in variables.items()
+              if isinstance(base, (int, float)) and base != 0 and (table[v] / base > 0).all() and table[v].nunique() > 1]
+    rows = []
+    for (aircraft, segment), group in table.groupby(["aircraft", "segment"], sort=False):
+        design = np.column_stack([np.ones(len(group))] + [np.log(group[v].to_numpy(float) / variables[v]) for v in usable])
+        for metric in metrics:
+            values = group[metric].to_numpy(float)
+            target = np.log(values) if metric == "power_W" else values
+            coefficients = np.linalg.lstsq(design, target, rcond=None)[0]
+            for variable, slope in zip(usable, coefficients[1:]):
+                change = 100.0 * (math.exp(slope * TEN_PERCENT) - 1.0) if metric == "power_W" else slope * TEN_PERCENT
+                rows.append({"aircraft": aircraft, "segment": segment, "metric": metric, "variable": variable,
+                             "change_per_10pct": float(change), "unit": "%" if metric == "power_W" else "dB"})
+    return pd.DataFrame(rows, columns=["aircraft", "segment", "metric", "variable", "change_per_10pct", "unit"])
+
+
+def sensitivity_ranking(sensitivities: pd.DataFrame) -> pd.DataFrame:
+    """Variables ranked per aircraft × metric by the mean over segments of their change per +10 % (sign
+    kept), largest magnitude first; ``rank`` starts at 1."""
+    mean = (sensitivities.groupby(["aircraft", "metric", "variable", "unit"], sort=False)["change_per_10pct"]
+            .mean().reset_index())
+    mean["magnitude"] = mean["change_per_10pct"].abs()
+    mean = mean.sort_values(["aircraft", "metric", "magnitude"], ascending=[True, True, False], kind="mergesort")
+    mean["rank"] = mean.groupby(["aircraft", "metric"]).cumcount() + 1
+    return mean.drop(columns="magnitude").reset_index(drop=True)
+
+
+METRICS = ("max_dba_db", "max_oaspl_db", "max_bvispl_db", "power_W")
+
+
+def trade_tables(rows: Sequence[pd.DataFrame], designs: Sequence[str], variables: Mapping[str, float]
+                 ) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame]:
+    """(trade table, sensitivity per aircraft × segment, ranking) from the cases' rows: rows ordered by
+    ``designs`` (ids in study order), aircraft and segment, with the Pareto front marked
+    (:func:`mark_pareto`); sensitivities of :data:`METRICS` present (:func:`sensitivity`)."""
+    table = pd.concat(list(rows), ignore_index=True)
+    order = {design: index for index, design in enumerate(designs)}
+    table = table.sort_values(["aircraft", "segment"], kind="mergesort")
+    table = table.iloc[table["design"].map(order).argsort(kind="stable")].reset_index(drop=True)
+    table = mark_pareto(table)
+    per_segment = sensitivity(table, variables, [m for m in METRICS if m in table.columns])
+    return table, per_segment, sensitivity_ranking(per_segment)

@@ -1,0 +1,65 @@
+"""Trade tables (nps.app.trade): Pareto front and sensitivities against hand computations."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from nps.app.trade import pareto_front, sensitivity, sensitivity_ranking, trade_tables
+
+
+def test_pareto_front_of_a_known_set():
+    power = np.array([1.0, 2.0, 3.0, 2.0, 1.0, 4.0])
+    noise = np.array([5.0, 3.0, 1.0, 4.0, 6.0, 1.0])
+    # (2, 4) is beaten by (2, 3); (1, 6) by (1, 5); (4, 1) by (3, 1)
+    assert pareto_front(power, noise).tolist() == [True, True, True, False, False, False]
+
+
+def _table(values, levels, power, segment="seg2"):
+    return pd.DataFrame({"design": [f"d{i}" for i in range(len(values))], "x": values, "aircraft": "heli",
+                         "segment": segment, "segment_name": "level", "max_dba_db": levels, "power_W": power})
+
+
+def test_sensitivity_of_two_variants_is_the_hand_computation():
+    """Two designs differing in one variable: the slope is exact; per +10 %: ΔL ln 1.1 / ln(x2/x1)."""
+    table = _table([25.0, 28.0], [87.5, 89.3], [4.17e5, 4.74e5])
+    result = sensitivity(table, {"x": 28.0}, ["max_dba_db", "power_W"]).set_index("metric")["change_per_10pct"]
+    assert result["max_dba_db"] == pytest.approx((89.3 - 87.5) * math.log(1.1) / math.log(28.0 / 25.0), rel=1e-12)
+    power_exponent = math.log(4.74e5 / 4.17e5) / math.log(28.0 / 25.0)
+    assert result["power_W"] == pytest.approx(100.0 * (1.1 ** power_exponent - 1.0), rel=1e-12)
+
+
+def test_sensitivity_recovers_main_effects_of_a_factorial():
+    """L = 80 + 30 log10(x) − 5 log10(y) on a 3 × 3 factorial: per +10 %, 30 log10 1.1 and −5 log10 1.1."""
+    x, y = np.meshgrid([20.0, 25.0, 30.0], [3.0, 4.0, 5.0])
+    table = _table(x.ravel(), 80 + 30 * np.log10(x.ravel()) - 5 * np.log10(y.ravel()), np.full(9, 1e5))
+    table["y"] = y.ravel()
+    result = sensitivity(table, {"x": 25.0, "y": 4.0}, ["max_dba_db"]).set_index("variable")["change_per_10pct"]
+    assert result["x"] == pytest.approx(30 * math.log10(1.1), rel=1e-10)
+    assert result["y"] == pytest.approx(-5 * math.log10(1.1), rel=1e-10)
+    ranking = sensitivity_ranking(sensitivity(table, {"x": 25.0, "y": 4.0}, ["max_dba_db"]))
+    assert ranking["variable"].tolist() == ["x", "y"] and ranking["rank"].tolist() == [1, 2]
+
+
+def test_trade_tables_order_rows_by_design_and_mark_the_front():
+    rows = [_table([v], [l], [p]).assign(design=d) for d, v, l, p in
+            (("db", 28.0, 89.0, 4.7e5), ("da", 25.0, 87.0, 4.2e5), ("dc", 30.0, 88.0, 5.0e5))]
+    table, _, _ = trade_tables(rows, ["da", "db", "dc"], {"x": 28.0})
+    assert table["design"].tolist() == ["da", "db", "dc"]
+    assert table["pareto"].tolist() == [True, False, False]
+
+
+def test_certification_and_footprint_columns_repeat_the_aircraft_values_on_every_row():
+    from nps.app.trade import certification_columns, footprint_columns
+
+    rows = _table([25.0, 28.0], [87.0, 89.0], [4e5, 5e5])
+    summary = pd.DataFrame({"procedure": ["takeoff", "overflight", "approach"], "epnl_db": [93.4, 91.6, 94.9],
+                            "margin_db": [0.7, 0.55, 2.2]})
+    areas = pd.DataFrame({"metric": ["sel_db", "sel_db"], "level_db": [60.0, 80.0], "area_km2": [131.5, 9.1],
+                          "open": [True, False]})
+    table = footprint_columns(certification_columns(rows, summary), areas)
+    assert table["min_margin_db"].tolist() == [0.55, 0.55] and table["epnl_approach_db"].tolist() == [94.9, 94.9]
+    assert table["sel_db_80db_area_km2"].tolist() == [9.1, 9.1] and table["footprint_open"].iloc[0] == "sel_db 60 dB"
