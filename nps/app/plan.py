@@ -126,7 +126,7 @@ def _source_hemisphere(case, obsset):
     return {"rotors": list(case.rotors), "solidity": rotor_solidities(case.aircraft),
             "broadband": settings["models"]["broadband"],
             "reference_radius_m": settings["footprint"]["reference_radius_R"] * case.aircraft["rotors"][0]["radius_m"],
-            "obsset": settings["footprint"]["source_set"], "variant": case.variants[-1]}
+            "obsset": settings["footprint"]["source_set"], "variant": case.variants[-1], **_tone_sum(case)}
 
 
 def _certification(case, obsset):

@@ -166,15 +166,15 @@ def run_chain(campaign: Campaign, aircraft: str, segment: str, cache: StageCache
 
 
 def warnings_of(artifacts: list[Artifact]) -> list[str]:
-    """Validity warnings recorded in the metadata of the artifacts' Parquet files (sorted, unique)."""
+    """The warnings recorded in the metadata of the artifacts' Parquet files (sorted, unique): validity
+    findings run under ``allow_outside_validity`` and model-range notes (``model_warnings``)."""
     found = set()
     for artifact in artifacts:
         for path in artifact.paths.values():
             files = sorted(Path(path).glob("*.parquet")) if Path(path).is_dir() else [Path(path)]
-            for file in files:
-                if file.suffix == ".parquet":
-                    found.update(w["message"] if isinstance(w, dict) else str(w)
-                                 for w in read_metadata(file).get("validity_warnings", []))
+            for meta in map(read_metadata, (f for f in files if f.suffix == ".parquet")):
+                found.update(w["message"] for w in (meta["validity_warnings"] if "validity_warnings" in meta else []))
+                found.update(str(w) for w in (meta["model_warnings"] if "model_warnings" in meta else []))
     return sorted(found)
 
 

@@ -53,6 +53,7 @@ def test_incoherent_aircraft_pass_the_tone_sum_and_coherent_ones_nothing(campaig
     hexa = CaseConfig.from_campaign(campaign, "hexacopter", "seg2")
     heli = CaseConfig.from_campaign(campaign, "helicopter", "seg2")
     assert stage_params("metrics", hexa)["tone_sum"] == "incoherent" and "tone_sum" in stage_params("tones", hexa)
+    assert stage_params("source_hemisphere", hexa)["tone_sum"] == "incoherent"  # footprints and certification too
     assert "tone_sum" not in stage_params("metrics", heli) and "phases_deg" not in stage_params("acoustics", heli)
 
 
