@@ -62,8 +62,7 @@ class Case:
     def segments(self) -> list[str]:
         return list(self.campaign.segments)
 
-    def run(self, segment: str, observer_sets: tuple[str, ...] = ("hemisphere",), products: tuple[str, ...] = ("performance", "noise"),
-            design_values: dict | None = None) -> CaseResult:
+    def run(self, segment: str, observer_sets: tuple[str, ...] = ("hemisphere",), design_values: dict | None = None) -> CaseResult:
         """Run (or reuse from the cache) the chain of ``segment``; ``design_values`` (label → value) lead the row."""
         if segment not in self.campaign.segments:
             raise KeyError(f"segment '{segment}' is not in the mission ({self.campaign.segments})")
@@ -71,5 +70,5 @@ class Case:
         if unknown:
             raise KeyError(f"observer sets {unknown} are not in the configuration ({list(self.campaign.config['observer_sets'])})")
         cache = StageCache(self.cache_dir)
-        outcome = evaluate(self.campaign, self.aircraft, segment, dict(design_values or {}), cache, list(observer_sets), list(products))
+        outcome = evaluate(self.campaign, self.aircraft, segment, dict(design_values or {}), cache, list(observer_sets))
         return CaseResult.from_outcome(outcome, cache.log)

@@ -7,19 +7,22 @@ from pathlib import Path
 
 import pandas as pd
 
-from nps.api.case import DEFAULT_CACHE, Case
+from nps.api.case import DEFAULT_CACHE
 from nps.app.designs import DesignStudy, load_study
-from nps.app.trade import trade_tables
+from nps.app.trade import refused_table, trade_tables
+from nps.stages.case import REFUSALS, StageCache, design_rows
 
 
 @dataclass(frozen=True)
 class StudyResult:
     """The trade table (one row per design × aircraft × segment, ``pareto`` marked), the sensitivity per
-    aircraft × segment × metric × variable (change per +10 %) and its ranking (nps.app.trade)."""
+    aircraft × segment × metric × variable (change per +10 %), its ranking and the refused designs
+    (nps.app.trade)."""
 
     table: pd.DataFrame
     sensitivity: pd.DataFrame
     ranking: pd.DataFrame
+    refused: pd.DataFrame
 
 
 class Study:
@@ -43,14 +46,23 @@ class Study:
         return pd.DataFrame([{"design": d.id, **d.values} for d in self.study.designs])
 
     def run(self, segments: list[str] | None = None) -> StudyResult:
-        """Run every design × aircraft × segment (``segments``: a subset) and make the trade tables."""
-        spec, rows = self.study.spec, []
+        """Run every design × aircraft over the study's segments (``segments``: a subset) with the study's
+        products, as the workflow's case jobs do (:func:`nps.stages.case.design_rows`), and make the trade
+        tables; designs the validity envelope or a trim refuses are in ``refused``."""
+        spec, rows, refused = self.study.spec, [], []
+        cache = StageCache(self.cache_dir)
         for design in self.study.designs:
+            values = {"design": design.id, **design.values}
             for aircraft in self.study.aircraft:
-                case = Case(design.campaign, aircraft, self.cache_dir)
-                for segment in segments or self.study.segments:
-                    result = case.run(segment, tuple(spec["observer_sets"]), tuple(spec["products"]),
-                                      {"design": design.id, **design.values})
-                    rows.append(result.row)
+                try:
+                    table, _, _ = design_rows(design.campaign, aircraft, segments or self.study.segments, values,
+                                              spec["observer_sets"], spec["products"], cache)
+                except REFUSALS as error:
+                    refused.append((values, aircraft, str(error)))
+                    continue
+                rows.append(table)
         variables = {v.label: v.base_value for v in self.study.variables}
-        return StudyResult(*trade_tables(rows, [d.id for d in self.study.designs], variables))
+        if not rows:
+            raise ValueError(f"study {self.study.name}: every design is refused; first: {refused[0][2]}")
+        tables = trade_tables(rows, [d.id for d in self.study.designs], variables)
+        return StudyResult(*tables, refused_table(refused, list(variables)))

@@ -15,7 +15,7 @@ import json
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from nps.app.config import Campaign
+from nps.app.config import Campaign, broadband_model
 from nps.noise.metrics import rotor_solidities
 from nps.noise.signals import TONE_SUMS
 
@@ -146,6 +146,12 @@ def _footprint(case, obsset):
 
 PARAMS = {"trim": _trim, "loads": _loads, "wake": _wake, "observers": _observers, "acoustics": _acoustics,
           "hsi": _hsi, "metrics": _metrics, "tones": _tones, "source_hemisphere": _source_hemisphere, "certification": _certification, "footprint": _footprint}
+
+
+def metrics_reads_disks(settings: Mapping[str, Any]) -> bool:
+    """Whether the metrics stage reads the rotors' disk tables (input ``disks``): with BPM broadband, or
+    ``auto`` (BPM for the rotors outside Pegg's range)."""
+    return broadband_model(settings["models"]["broadband"]) in ("bpm", "auto")
 
 
 def stage_params(stage: str, case: CaseConfig, obsset: str | None = None) -> dict:

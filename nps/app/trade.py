@@ -102,6 +102,13 @@ def footprint_columns(table: pd.DataFrame, areas: pd.DataFrame) -> pd.DataFrame:
     return table
 
 
+def refused_table(refused: Sequence[tuple[Mapping, str, str]], variables: Sequence[str]) -> pd.DataFrame:
+    """The designs a validity check or a trim refused: one row per (design values with ``design``, aircraft,
+    reason), columns design, the variables, aircraft, reason."""
+    rows = [{**values, "aircraft": aircraft, "reason": reason} for values, aircraft, reason in refused]
+    return pd.DataFrame(rows, columns=["design", *variables, "aircraft", "reason"])
+
+
 def pareto_front(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     """Boolean mask of the points no other point beats in both ``x`` and ``y`` (lower is better; a point
     equal in one and lower in the other beats it)."""

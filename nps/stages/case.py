@@ -38,9 +38,9 @@ from pathlib import Path
 
 import pandas as pd
 
-from nps.app.config import Campaign, broadband_model
+from nps.app.config import Campaign
 from nps.app.io import read_metadata, read_table, rotor_path, write_table
-from nps.app.plan import CaseConfig, job_digest, stage_params
+from nps.app.plan import CaseConfig, job_digest, metrics_reads_disks, stage_params
 from nps.app.trade import case_row, certification_columns, footprint_columns
 from nps.app.validity import ValidityError
 from nps.rotor.bet import TrimError
@@ -142,7 +142,7 @@ def run_chain(campaign: Campaign, aircraft: str, segment: str, cache: StageCache
         wake = cache.run("wake", {"trim": (trim, "trim"), "loads": disks}, {**stage_params("wake", case), **same})
         disks = (wake, "bvi")
     hsi_segment = segment in campaign.hsi_segments()
-    bpm = broadband_model(campaign.config["models"]["broadband"]) in ("bpm", "auto")
+    bpm = metrics_reads_disks(campaign.config)
     result = {"trim": trim, "loads": loads, "acoustics": {}, "metrics": {}}
     sets = list(observer_sets) + ([campaign.config["footprint"]["source_set"]] if source_set else [])
     for obsset in dict.fromkeys(sets):
@@ -192,7 +192,7 @@ class CaseOutcome:
 
 
 def evaluate(campaign: Campaign, aircraft: str, segment: str, design_values: dict, cache: StageCache,
-             observer_sets: list[str], products: list[str]) -> CaseOutcome:
+             observer_sets: list[str]) -> CaseOutcome:
     """Run (or reuse) the chain of a case and make its trade-table row (:func:`nps.app.trade.case_row`)."""
     chain = run_chain(campaign, aircraft, segment, cache, list(observer_sets))
     trim = read_table(chain["trim"].paths["trim"])
@@ -227,22 +227,23 @@ def _logged(cache: StageCache, start: int, prefix: str) -> tuple[dict, list[str]
             [f"{prefix} {stage:18s} {digest} {what:8s} {seconds:7.2f} s" for stage, digest, what, seconds in entries])
 
 
-def design_rows(campaign: Campaign, params: dict, cache: StageCache) -> tuple[pd.DataFrame, dict, list[str]]:
-    """The trade-table rows of a design's aircraft in every segment, with the aircraft-level products
-    (certification, footprint); the stage digests (part → stage → digest) and the report lines."""
+def design_rows(campaign: Campaign, aircraft: str, segments: list[str], design_values: dict, observer_sets: list[str],
+                products: list[str], cache: StageCache) -> tuple[pd.DataFrame, dict, list[str]]:
+    """The trade-table rows of a design's aircraft in ``segments``, with the aircraft-level ``products``
+    (certification, footprint); the stage digests (part → stage → digest) and the report lines. Raises one
+    of :data:`REFUSALS` for a design the validity envelope or a trim refuses."""
     rows, digests, report = [], {}, []
-    for segment in params["segments"]:
+    for segment in segments:
         start = len(cache.log)
-        outcome = evaluate(campaign, params["aircraft"], segment, params["design_values"], cache, params["observer_sets"],
-                           params["products"])
+        outcome = evaluate(campaign, aircraft, segment, design_values, cache, observer_sets)
         rows.append(outcome.row)
         digests[segment], lines = _logged(cache, start, segment)
         report += lines
     table = pd.concat(rows, ignore_index=True)
     for product, columns in (("certification", certification_columns), ("footprint", footprint_columns)):
-        if product in params["products"]:
+        if product in products:
             start = len(cache.log)
-            artifact = mission_product(product, campaign, params["aircraft"], cache)
+            artifact = mission_product(product, campaign, aircraft, cache)
             table = columns(table, read_table(artifact.paths["summary" if product == "certification" else "areas"]))
             digests[product], lines = _logged(cache, start, product)
             report += lines
@@ -253,7 +254,8 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     campaign, cache = campaign_from_params(params["campaign"]), StageCache(Path(params["cache_dir"]))
     meta = {"aircraft": params["aircraft"], "design": params["design_values"]}
     try:
-        table, digests, report = design_rows(campaign, params, cache)
+        table, digests, report = design_rows(campaign, params["aircraft"], params["segments"], params["design_values"],
+                                             params["observer_sets"], params["products"], cache)
     except REFUSALS as error:  # a design outside the envelope: recorded, not a failed job
         table, digests, report = pd.DataFrame({"design": pd.Series([], dtype=str)}), {}, [f"refused: {error}"]
         meta["refused"] = str(error)

@@ -15,10 +15,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import pandas as pd
-
 from nps.app.io import read_metadata, read_table, write_table
-from nps.app.trade import METRICS, trade_tables
+from nps.app.trade import METRICS, refused_table, trade_tables
 from nps.plots.trade import html_table, metrics_against_variables, pareto_figure, sensitivity_figure
 
 
@@ -28,11 +26,11 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     for path in inputs.values():
         meta = read_metadata(path)
         if "refused" in meta:
-            refused.append({**meta["design"], "aircraft": meta["aircraft"], "reason": meta["refused"]})
+            refused.append((meta["design"], meta["aircraft"], meta["refused"]))
         else:
             rows[path] = read_table(path)
     if not rows:
-        raise ValueError(f"study {params['study']}: every design is refused; first: {refused[0]['reason']}")
+        raise ValueError(f"study {params['study']}: every design is refused; first: {refused[0][2]}")
     first, columns = next(iter(rows)), list(next(iter(rows.values())).columns)
     for path, row in rows.items():
         if list(row.columns) != columns:
@@ -43,8 +41,8 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     meta = {"study": params["study"], "variables": variables, "dropped": params["dropped"]}
     write_table(table, outputs["table"], stage="trade", metadata=meta)
     write_table(per_segment, outputs["sensitivity"], stage="trade", metadata=meta)
-    refused_table = pd.DataFrame(refused, columns=["design", *variables, "aircraft", "reason"])
-    for frame, key in ((table, "csv"), (per_segment, "sensitivity_csv"), (ranking, "ranking_csv"), (refused_table, "refused_csv")):
+    for frame, key in ((table, "csv"), (per_segment, "sensitivity_csv"), (ranking, "ranking_csv"),
+                       (refused_table(refused, list(variables)), "refused_csv")):
         Path(outputs[key]).parent.mkdir(parents=True, exist_ok=True)
         frame.to_csv(outputs[key], index=False, float_format="%.6g")
     notes = {"designs": f"{table['design'].nunique()} ({len(params['dropped'])} dropped by constraints, {len(refused)} refused: "

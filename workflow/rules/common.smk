@@ -5,9 +5,9 @@ import sys
 from functools import lru_cache
 from pathlib import Path
 
-from nps.app.config import ConfigError, broadband_model, load_campaign, load_rig
+from nps.app.config import ConfigError, load_campaign, load_rig
 from nps.app.designs import load_study
-from nps.app.plan import CaseConfig, stage_params
+from nps.app.plan import CaseConfig, metrics_reads_disks, stage_params
 from nps.rig import RIG_AIRCRAFT
 from nps.stages.code import stage_digest
 from nps.noise.metrics import rotor_solidities
@@ -175,7 +175,7 @@ def metrics_signal_inputs(wildcards):
     inputs = {"signals": signals_dir("acoustics").format(**wildcards)}
     if not is_rig(wildcards) and wildcards.segment in CAMPAIGN.hsi_segments():
         inputs["hsi"] = signals_dir("hsi").format(**wildcards)
-    if broadband_model(settings(wildcards)["models"]["broadband"]) in ("bpm", "auto"):
+    if metrics_reads_disks(settings(wildcards)):
         inputs["disks"] = variant_disks(wildcards)
     return inputs
 
