@@ -39,6 +39,7 @@ from nps.app import vtk
 from nps.wake import prescribed as wake
 from nps.app.io import check_provenance, read_table, rotor_path, write_table
 from nps.app.resources import check_memory, estimate_bytes
+from nps.rig import RIG_AIRCRAFT
 from nps.rotor.geometry import RotorGeometry, RotorMotion
 from nps.rotor.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
 
@@ -83,8 +84,12 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
                  f"{wake_dir}: wake of {model.revolutions:g} revolutions x {model.steps_per_rev} steps")
     free = params["wake"]["model"] == "free"
     if free:
+        # a rig's rotors keep their own control in the re-trim (nps.wake.interaction); an aircraft's: None
+        controls = ({n: r["control"] for n, r in params["rotors"].items()} if params["aircraft"] == RIG_AIRCRAFT
+                    else None)
         coupled = interaction.aircraft_bvi_loads(trim, params["rotors"], disks, summaries, model,
-                                                 freewake.FreeWakeModel.from_config(params["wake"]["free"]), bvi_model)
+                                                 freewake.FreeWakeModel.from_config(params["wake"]["free"]), bvi_model,
+                                                 controls=controls)
     report = []
     for name, rotor in params["rotors"].items():
         disk, inputs_of = disks[name], [str(paths[name][0]), str(paths[name][1]), str(inputs["trim"])]

@@ -96,13 +96,16 @@ def aircraft_bvi_loads(
     wake_model: wake.WakeModel,
     free_model: freewake.FreeWakeModel = freewake.FreeWakeModel(),
     bvi_model: bvi.BVIModel = bvi.BVIModel(),
+    controls: Mapping[str, str] | None = None,
 ) -> AircraftBVI:
     """BVI loads of every rotor of one aircraft × segment with all rotors' free wakes (module doc).
 
     ``trim``: the aircraft trim table; ``rotor_configs``: validated ``rotors[]`` entries by
     name; ``disks``/``summaries``: loads disk tables and summaries by rotor name (same keys).
     ``wake_model``: Beddoes initial guess and the blade-load evaluation (segments, lifting-line
-    core); ``free_model``: the relaxation. Raises :class:`nps.wake.free.FreeWakeError` when the
+    core); ``free_model``: the relaxation; ``controls``: a rig's control mode by rotor (None: the aircraft's
+    re-trim of every rotor): ``fixed`` is not re-trimmed (its thrust is the answer), ``rpm`` refused where it
+    would need a re-trim. Raises :class:`nps.wake.free.FreeWakeError` when the
     wake does not converge, ValueError naming the rotor/field for bad inputs.
     """
     if set(rotor_configs) != set(disks) or set(disks) != set(summaries):
@@ -147,7 +150,12 @@ def aircraft_bvi_loads(
         probe = bvi.loads_with_increments(disk, row, geometry, low_ut, low_up, v.sum(axis=0), bvi.BVIModel(unsteady=False))
         change = _disk_thrust(probe.disk, geometry.n_blades, n_psi) / target - 1.0
         retrim = None
-        if abs(change) > TRIM_TOLERANCE and coupled[name]:
+        mode = "collective" if controls is None else controls.get(name, "collective")
+        if abs(change) > TRIM_TOLERANCE and coupled[name] and mode == "rpm":
+            raise ValueError(f"aircraft_bvi_loads: rotor '{name}': control 'rpm': the other rotors' wakes change its "
+                             f"thrust by {100.0 * change:.3g} %, and its speed cannot be re-trimmed (the other stages "
+                             "read the set-up's speed): use control 'collective' or 'fixed' for a coupled rotor")
+        if abs(change) > TRIM_TOLERANCE and coupled[name] and mode != "fixed":
             retrim = bet.trim_rotor(geometry, OperatingPoint.from_trim_row(row), bet.DiskGrid(grid.shape[0], grid.shape[1]),
                                     tol_rel=TRIM_TOLERANCE, interference=(low_ut, low_up))
             result = bvi.loads_with_increments(retrim.disk, row, geometry, high_ut, high_up, v.sum(axis=0), bvi_model)
