@@ -29,6 +29,8 @@ def main(argv: list[str] | None = None) -> int:
     """Run ``python -m nps <stage> [options]``; returns the exit status (option errors: 2, one line)."""
     argv = list(sys.argv[1:] if argv is None else argv)
     available = stages()
+    if argv and argv[0].replace("-", "_") in available:  # station-loads: the module station_loads
+        argv[0] = argv[0].replace("-", "_")
     if not argv or argv[0] in ("-h", "--help"):
         print("usage: python -m nps <stage> [options]\nstages: " + ", ".join(available), file=sys.stderr)
         return 0 if argv else 2

@@ -757,41 +757,154 @@ def rig_settings(rig: dict) -> dict:
     return {**sections, "atmosphere": atmosphere, "campaign": {"allow_outside_validity": rig["allow_outside_validity"]}}
 
 
-def load_rig(path: str | Path) -> dict:
-    """Read and validate one rig (``config/rigs/*.yaml``, nps.rig.case) with its rotor.
+def rig_disk_problems(rotors: list[dict]) -> list[tuple[str, str]]:
+    """Rotors of a rig (``rotors[]``, hubs and axes in G as ``hub_position_m`` / ``thrust_axis_body``) whose disks
+    intersect: a point of one flat disk (up to its tip) within the other's radius and within half the sum of their
+    chords of its plane; and a non-lift rotor entering another's blade path with the flapping margin
+    (:func:`disk_crossing_problems`, the aircraft's rule). The rotor blamed is the later entry."""
+    import numpy as np
 
-    Returns the rig with the schema's defaults filled in, ``rotor_config`` (the rotor as the stages
-    use it: :func:`nps.rig.case.rotor_for_rig`, validated like an aircraft's ``rotors[]`` entry, tables
-    resolved), ``microphones_T`` / ``microphone_groups`` (positions in the test frame, group index) and
-    ``settings`` (:func:`rig_settings`).
-    """
-    from nps.noise.observers import ObserverError
-    from nps.rig.case import control_conflicts, microphone_positions, rotor_for_rig
+    problems = []
+    for j, rotor in enumerate(rotors):
+        hub_j, axis_j = _disk_frame(rotor)
+        e1 = np.cross(axis_j, [0.0, 1.0, 0.0] if abs(axis_j[1]) < 0.9 else [1.0, 0.0, 0.0])
+        e1 /= np.linalg.norm(e1)
+        rr, pp = np.meshgrid(np.linspace(0.0, float(rotor["radius_m"]), 17), np.linspace(0.0, 2.0 * np.pi, 144), indexing="ij")
+        points = hub_j + rr.reshape(-1, 1) * (np.cos(pp).reshape(-1, 1) * e1 + np.sin(pp).reshape(-1, 1) * np.cross(axis_j, e1))
+        for other in rotors[:j]:
+            hub, axis = _disk_frame(other)
+            rel = points - hub
+            axial = rel @ axis
+            radial = np.linalg.norm(rel - np.outer(axial, axis), axis=1)
+            gap = (RotorGeometry.from_config(rotor).chord_m + RotorGeometry.from_config(other).chord_m) / 2.0
+            inside = (radial <= other["radius_m"]) & (np.abs(axial) <= gap)
+            if inside.any():
+                problems.append((f"rotors[{j}] '{rotor['name']}'.hub_position_m", (
+                    f"the disk of rotor '{rotor['name']}' (radius {rotor['radius_m']} m, hub {rotor['hub_position_m']} "
+                    f"in G) intersects the disk of rotor '{other['name']}' (radius {other['radius_m']} m, hub "
+                    f"{other['hub_position_m']} in G): expected the disks apart; check hub_position_m and the axes")))
+    return problems + [(f"{field} '{rotors[int(field[7:-1])]['name']}'.hub_position_m", what)
+                       for field, what in disk_crossing_problems(rotors)]
 
-    path = Path(path)
-    schema = rig_schema()
-    data = fill_defaults(validate(read_yaml(path), schema, path), schema)
-    if path.stem != data["name"]:
-        _raise(path, [("name", f"expected the file stem '{path.stem}', got '{data['name']}'")])
-    ref, base = data["rotor"], path.parent
+
+def _rig_rotor(ref: dict, base: Path, prepare) -> dict:
+    """The validated rotor of a rig's rotor reference (``file``, or ``aircraft`` and ``name``; paths relative to
+    ``base``), made the stages' rotor by ``prepare`` (the rig's speed, control, placement)."""
     if "file" in ref:
         rotor_file = base / ref["file"]
         rotor_schema = {"$defs": load_schema("aircraft")["$defs"], "$ref": "#/$defs/rotor"}
-        rotor = rotor_for_rig(read_yaml(rotor_file), data["condition"])
+        rotor = prepare(read_yaml(rotor_file))
         rotor = fill_defaults(validate(rotor, rotor_schema, rotor_file), rotor_schema)
     else:
         rotor_file = base / ref["aircraft"]
-        rotor = rotor_for_rig(aircraft_rotor(load_aircraft(rotor_file), ref["name"], rotor_file), data["condition"])
+        rotor = prepare(aircraft_rotor(load_aircraft(rotor_file), ref["name"], rotor_file))
     _raise(rotor_file, [(f"rotor '{rotor['name']}'{field[len('rotor'):]}", what)
                         for field, what in _rotor_sections(rotor, "rotor", rotor_file.parent)])
     _raise(rotor_file, [("rotor", what) for _, what in solidity_problems([rotor])])
-    mode = rotor["control"]
-    if mode != "fixed" and "thrust_N" not in data["condition"]:
-        _raise(path, [("condition.thrust_N", f"required with control '{mode}' (the thrust target)")])
-    _raise(path, control_conflicts(mode, {**data["condition"], "flapping": rotor["flapping"]}))
+    return rotor
+
+
+def _rig_control_problems(rotor: dict, condition: dict, where: str) -> list[tuple[str, str]]:
+    """A rig rotor's control against its condition: the thrust target it needs, the values it cannot use."""
+    from nps.rig.case import control_conflicts
+
+    mode, problems = rotor["control"], []
+    if mode != "fixed" and "thrust_N" not in condition:
+        problems.append((f"{where}.thrust_N", f"required with control '{mode}' (the thrust target)"))
+    return problems + control_conflicts(mode, {**condition, "flapping": rotor["flapping"]}, where)
+
+
+def _rig_form_problems(raw: Any) -> list[tuple[str, str]]:
+    """The one-rotor (``rotor``) or several-rotor (``rotors``) form of a rig document as written: exactly one of
+    the two, and with ``rotors`` no per-rotor field in ``condition``."""
+    from nps.rig.case import ENTRY_CONDITION_FIELDS
+
+    if not isinstance(raw, dict):
+        return []  # the schema's message
+    if ("rotor" in raw) == ("rotors" in raw):
+        return [("rotor, rotors", "expected exactly one of rotor (one rotor) and rotors (several), got "
+                 + ("both" if "rotor" in raw else "neither"))]
+    condition = raw.get("condition")
+    if "rotors" not in raw or not isinstance(condition, dict):
+        return []
+    return [(f"condition.{key}", f"with rotors, each rotor gives its own {key} (rotors[i].{key}); the condition "
+             "holds only the common tunnel_speed_mps and atmosphere") for key in ENTRY_CONDITION_FIELDS if key in condition]
+
+
+def _rig_rotors(data: dict, path: Path) -> tuple[list[dict], list[dict]]:
+    """(rotors, conditions) of a validated rig: the stages' rotor configurations and each rotor's condition
+    (:func:`nps.rig.case.rotor_for_rig`, :func:`nps.rig.case.rig_rotor`), checked: controls, unique names,
+    disks apart, no ``rpm`` rotor coupled through the free wake."""
+    from nps.rig.case import rig_rotor, rotor_condition, rotor_for_rig
+
+    if "rotor" in data:
+        rotor = _rig_rotor(data["rotor"], path.parent, lambda r: rotor_for_rig(r, data["condition"]))
+        _raise(path, _rig_control_problems(rotor, data["condition"], "condition"))
+        return [rotor], [data["condition"]]
+    rotors, conditions, problems, seen = [], [], [], {}
+    free = data["models"]["bvi"] and data.get("wake", {}).get("model") == "free" and len(data["rotors"]) > 1
+    for i, entry in enumerate(data["rotors"]):
+        condition = rotor_condition(data["condition"], entry)
+        rotor = _rig_rotor(entry["rotor"], path.parent, lambda r: rig_rotor(r, condition, entry))
+        where = f"rotors[{i}] '{rotor['name']}'"
+        if rotor["name"] in seen:
+            problems.append((f"rotors[{i}].name", f"rotor name '{rotor['name']}' is also rotors[{seen[rotor['name']]}]'s: "
+                             "expected unique names (give this entry a name)"))
+        seen.setdefault(rotor["name"], i)
+        problems += _rig_control_problems(rotor, condition, where)
+        if free and rotor["control"] == "rpm":
+            problems.append((f"{where}.control", "'rpm' is not available for a rotor coupled to others through the free "
+                             "wake (wake.model free): its speed is not re-trimmed in their wakes; use collective (a "
+                             "thrust target) or fixed (a pitch)"))
+        rotors.append(rotor)
+        conditions.append(condition)
+    _raise(path, problems)
+    _raise(path, rig_disk_problems(rotors))
+    return rotors, conditions
+
+
+def _station_problems(stations: list, rotors: list[dict], n_r: int) -> list[tuple[str, str]]:
+    """Stations r/R outside a rotor's disk-table stations (midpoints of n_r equal elements from root to tip); one
+    problem per station, naming the first such rotor."""
+    problems = []
+    for k, station in enumerate(stations):
+        for rotor in rotors:
+            radius, root = float(rotor["radius_m"]), float(rotor["root_cutout_m"])
+            low, high = (root + (radius - root) / (2 * n_r)) / radius, 1.0 - (radius - root) / (2 * n_r * radius)
+            if not low <= station <= high:
+                problems.append((f"stations_r_over_R[{k}]", (
+                    f"r/R {station} outside rotor '{rotor['name']}''s disk stations [{low:.4g}, {high:.4g}] "
+                    f"(resolution.n_r {n_r}): loads at a station are interpolated between the table's stations")))
+                break  # one problem per station
+    return problems
+
+
+def load_rig(path: str | Path) -> dict:
+    """Read and validate one rig (``config/rigs/*.yaml``, nps.rig.case) with its rotor(s).
+
+    Returns the rig with the schema's defaults filled in, ``rotor_configs`` (the rotors as the stages use them:
+    :func:`nps.rig.case.rotor_for_rig` of the one-rotor form, :func:`nps.rig.case.rig_rotor` of each ``rotors[]``
+    entry; validated like an aircraft's ``rotors[]`` entries, tables resolved), ``rotor_conditions`` (each rotor's
+    condition: the rig's ``condition``, or :func:`nps.rig.case.rotor_condition`), ``rotor_config`` (the first
+    rotor), ``microphones_T`` / ``microphone_groups`` (positions in the test frame, group index) and
+    ``settings`` (:func:`rig_settings`).
+    """
+    from nps.noise.observers import ObserverError
+    from nps.rig.case import microphone_positions
+
+    path = Path(path)
+    schema = rig_schema()
+    raw = read_yaml(path)
+    _raise(path, _rig_form_problems(raw))
+    data = fill_defaults(validate(raw, schema, path), schema)
+    if path.stem != data["name"]:
+        _raise(path, [("name", f"expected the file stem '{path.stem}', got '{data['name']}'")])
+    rotors, conditions = _rig_rotors(data, path)
+    if "stations_r_over_R" in data:
+        _raise(path, _station_problems(data["stations_r_over_R"], rotors, int(data["resolution"]["n_r"])))
     try:
-        positions, groups = microphone_positions(data["microphones"], base)
+        positions, groups = microphone_positions(data["microphones"], path.parent)
     except ObserverError as exc:
         raise ConfigError(f"{path}: microphones: {exc}") from None
-    return {**data, "rotor_config": rotor, "microphones_T": positions, "microphone_groups": groups,
-            "settings": rig_settings(data)}
+    return {**data, "rotor_config": rotors[0], "rotor_configs": rotors, "rotor_conditions": conditions,
+            "microphones_T": positions, "microphone_groups": groups, "settings": rig_settings(data)}

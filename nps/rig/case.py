@@ -17,6 +17,13 @@ Frames (docs/reference/rigs.md has the picture):
 - **Shaft angle** α_s, positive with the shaft tilted toward downstream (aft, the usual
   "nose-up" tunnel angle): thrust axis in G = (−sin α_s, 0, cos α_s); the free stream then
   enters the disk from below (μ_z = −V sin α_s / ΩR < 0).
+
+Several rotors (``rotors:`` instead of ``rotor:``): each entry places its rotor in T (``hub_position_m``, from
+the origin of T, which the microphones share; the bundled rigs put the first rotor's hub there) with its own
+axis — ``shaft_angle_deg`` α, then ``lateral_angle_deg`` l toward +y_T: axis_T = (cos l sin α, sin l, cos l cos α),
+or ``thrust_axis_T`` — rotation sense, speed, control and targets. Each rotor is solved under its own control at
+its own operating point (the tunnel speed through its own axis); the trim artifact has one row per rotor, hub
+and hub frame in G (:func:`rotor_condition`, :func:`rig_rotor`).
 """
 
 from __future__ import annotations
@@ -50,6 +57,13 @@ CONDITION_ROTOR_FIELDS = ("control", "pitch_deg", "flapping", "higher_harmonic_p
                           "prescribed_flap")
 
 
+# fields of a rotors[] entry that make the rotor's own condition, with the common ones of the rig's condition
+ENTRY_CONDITION_FIELDS = ("rpm", "omega_rad_s", "control", "pitch_deg", "flapping", "thrust_N", "roll_moment_Nm",
+                          "pitch_moment_Nm", "shaft_angle_deg", "lateral_angle_deg", "thrust_axis_T", "hub_position_m",
+                          "higher_harmonic_pitch", "elastic_twist_harmonics", "prescribed_flap")
+COMMON_CONDITION_FIELDS = ("tunnel_speed_mps", "atmosphere")
+
+
 def t_to_g(p_t_m) -> np.ndarray:
     """Test-frame components (..., 3) to flight-frame components: the 180° turn about z."""
     p = np.asarray(p_t_m, dtype=float)
@@ -59,6 +73,47 @@ def t_to_g(p_t_m) -> np.ndarray:
 def shaft_axis_flight(shaft_angle_rad: float) -> np.ndarray:
     """Thrust axis in G for a shaft tilted ``shaft_angle_rad`` toward downstream (aft)."""
     return np.array([-math.sin(shaft_angle_rad), 0.0, math.cos(shaft_angle_rad)])
+
+
+def rotor_axis_test(condition: Mapping) -> np.ndarray:
+    """Unit thrust axis in T of a rotor condition: ``thrust_axis_T`` normalised, else the shaft angle α (toward
+    +x_T) and lateral angle l (then toward +y_T): (cos l sin α, sin l, cos l cos α)."""
+    if "thrust_axis_T" in condition:
+        axis = np.asarray(condition["thrust_axis_T"], dtype=float)
+        return axis / np.linalg.norm(axis)
+    a, lat = math.radians(condition.get("shaft_angle_deg", 0.0)), math.radians(condition.get("lateral_angle_deg", 0.0))
+    return np.array([math.cos(lat) * math.sin(a), math.sin(lat), math.cos(lat) * math.cos(a)])
+
+
+def rotor_axis_flight(condition: Mapping) -> np.ndarray:
+    """Thrust axis in G of a rotor condition: :func:`shaft_axis_flight` of the shaft angle alone (the one-rotor
+    form, bit for bit), else :func:`t_to_g` of :func:`rotor_axis_test`."""
+    if "thrust_axis_T" not in condition and float(condition.get("lateral_angle_deg", 0.0)) == 0.0:
+        return shaft_axis_flight(math.radians(condition.get("shaft_angle_deg", 0.0)))
+    return t_to_g(rotor_axis_test(condition)) + 0.0  # + 0.0: no negative zeros
+
+
+def hub_flight(condition: Mapping) -> np.ndarray:
+    """Hub position in G (m) of a rotor condition: ``hub_position_m`` (in T) turned, the origin without one."""
+    return t_to_g(condition["hub_position_m"]) + 0.0 if "hub_position_m" in condition else np.zeros(3)
+
+
+def rotor_condition(condition: Mapping, entry: Mapping) -> dict:
+    """The condition of one ``rotors[]`` entry: the rig condition's common fields (tunnel speed, atmosphere) with
+    the entry's own (speed, control, pitch, targets, shaft and lateral angles or axis, hub position, blade motion)."""
+    return {**{k: condition[k] for k in COMMON_CONDITION_FIELDS if k in condition},
+            **{k: entry[k] for k in ENTRY_CONDITION_FIELDS if k in entry}}
+
+
+def rig_rotor(rotor: Mapping, condition: Mapping, entry: Mapping) -> dict:
+    """The stages' configuration of one ``rotors[]`` entry (:func:`rotor_for_rig` of its :func:`rotor_condition`
+    ``condition``) with the entry's name and rotation sense where given, and its hub and thrust axis in G as
+    ``hub_position_m`` / ``thrust_axis_body`` (a rig's body frame is G)."""
+    out = rotor_for_rig(rotor, condition)
+    out.update({key: entry[key] for key in ("name", "rotation") if key in entry})
+    out["hub_position_m"] = [float(v) for v in hub_flight(condition)]
+    out["thrust_axis_body"] = [float(v) for v in rotor_axis_flight(condition)]
+    return out
 
 
 def omega_of(condition: Mapping) -> float:
@@ -79,22 +134,23 @@ def rotor_for_rig(rotor: Mapping, condition: Mapping) -> dict:
     return out
 
 
-def control_conflicts(mode: str, condition: Mapping) -> list[tuple[str, str]]:
+def control_conflicts(mode: str, condition: Mapping, where: str = "condition") -> list[tuple[str, str]]:
     """(field, problem) of every condition value the control ``mode`` cannot use: a thrust target with
     ``fixed`` (the thrust is the answer), a pitch with ``collective`` (the trim sets it), hub-moment targets
-    without the cyclic of ``collective`` with flapping. A value that would be ignored is refused, not dropped."""
+    without the cyclic of ``collective`` with flapping. A value that would be ignored is refused, not dropped.
+    ``where``: the fields' prefix (``rotors[1] 'tail'`` for a ``rotors[]`` entry)."""
     problems = []
     if mode == "fixed" and "thrust_N" in condition:
-        problems.append(("condition.thrust_N", f"got {condition['thrust_N']!r}, but control 'fixed' uses no thrust "
+        problems.append((f"{where}.thrust_N", f"got {condition['thrust_N']!r}, but control 'fixed' uses no thrust "
                          "target (the thrust is the answer of the given pitch and speed): remove it, or trim to it "
                          "with control 'collective' or 'rpm'"))
     if mode == "collective" and "pitch_deg" in condition:
-        problems.append(("condition.pitch_deg", f"got {condition['pitch_deg']!r}, but control 'collective' trims the "
+        problems.append((f"{where}.pitch_deg", f"got {condition['pitch_deg']!r}, but control 'collective' trims the "
                          "pitch to the thrust target: remove it, or hold it with control 'fixed' or 'rpm'"))
     cyclic = mode == "collective" and bool(condition.get("flapping", True))
     for key in ("roll_moment_Nm", "pitch_moment_Nm"):
         if not cyclic and float(condition.get(key, 0.0)) != 0.0:
-            problems.append((f"condition.{key}", f"got {condition[key]!r}, but only control 'collective' with flapping "
+            problems.append((f"{where}.{key}", f"got {condition[key]!r}, but only control 'collective' with flapping "
                              f"trims the hub moments (control '{mode}'): remove it"))
     return problems
 
@@ -159,7 +215,7 @@ def rig_operating_point(rotor: Mapping, condition: Mapping) -> OperatingPoint:
     moment targets, the advance ratios of the tunnel speed through the shaft tilted by the shaft angle."""
     atm = condition["atmosphere"]
     omega, speed = omega_of(condition), float(condition.get("tunnel_speed_mps", 0.0))
-    r_gh = frames.hub_to_body(shaft_axis_flight(math.radians(condition.get("shaft_angle_deg", 0.0))))
+    r_gh = frames.hub_to_body(rotor_axis_flight(condition))
     v_h = -(r_gh.T @ np.array([speed, 0.0, 0.0])) / (omega * RotorGeometry.from_config(rotor).radius_m)
     return OperatingPoint(omega, float(v_h[0]), float(v_h[1]), float(-v_h[2]), float(atm["density_kg_m3"]),
                           float(atm["speed_of_sound_mps"]), float(condition.get("thrust_N", 0.0)),
@@ -175,28 +231,30 @@ def rig_solution(rotor: Mapping, condition: Mapping, grid: DiskGrid) -> RotorSol
 
 
 def rig_trim(rotor: Mapping, condition: Mapping, grid: DiskGrid, solution: RotorSolution | None = None) -> pd.DataFrame:
-    """The trim artifact (one row, :data:`nps.rotor.trim.TRIM_COLUMNS`) of a rig: hub at the origin of G,
-    moving at the tunnel speed along +x_G, shaft tilted by the shaft angle.
+    """The trim row (:data:`nps.rotor.trim.TRIM_COLUMNS`) of a rig's rotor: hub at the origin of G (a ``rotors[]``
+    entry's condition: at its ``hub_position_m``, with the rotor's role), moving at the tunnel speed along +x_G,
+    axis of :func:`rotor_axis_flight`.
 
     The rotor is solved under its control mode here (:func:`rig_solution`, or ``solution`` when already
     solved), so the row holds the rotor speed every later stage uses (solved for ``rpm``) and the
     blade-element thrust, torque and power (for ``fixed`` the thrust is the answer, not a target).
     """
     speed = float(condition.get("tunnel_speed_mps", 0.0))
-    r_gh = frames.hub_to_body(shaft_axis_flight(math.radians(condition.get("shaft_angle_deg", 0.0))))
+    r_gh = frames.hub_to_body(rotor_axis_flight(condition))
+    hub = hub_flight(condition)
     geometry, control = RotorGeometry.from_config(rotor), RotorControl.from_config(rotor)
     solution = rig_solution(rotor, condition, grid) if solution is None else solution
     op, totals = solution.operating_point, solution.result.totals
     mu = math.hypot(op.mu_x, op.mu_y)
     row = {
-        "rotor": str(rotor["name"]), "role": "lift", "rotation_sign": np.int8(geometry.rotation_sign),
+        "rotor": str(rotor["name"]), "role": str(rotor.get("role", "lift")) if "hub_position_m" in condition else "lift", "rotation_sign": np.int8(geometry.rotation_sign),
         "n_blades": np.int32(geometry.n_blades), "radius_m": geometry.radius_m, "omega_rad_s": op.omega_rad_s,
         "thrust_N": totals.thrust_N if control.mode == "fixed" else op.thrust_N,
         "roll_moment_Nm": op.roll_moment_Nm, "pitch_moment_Nm": op.pitch_moment_Nm,
         "torque_Nm": totals.torque_Nm, "power_W": totals.power_W, "mu_x": op.mu_x, "mu_y": op.mu_y, "mu_z": op.mu_z,
         "lambda_i": glauert_inflow(totals.ct, mu, op.mu_z), "ct": totals.ct,
         "tip_mach": op.omega_rad_s * geometry.radius_m / op.speed_of_sound_mps,
-        "hub_x_m": 0.0, "hub_y_m": 0.0, "hub_z_m": 0.0,
+        "hub_x_m": float(hub[0]), "hub_y_m": float(hub[1]), "hub_z_m": float(hub[2]),
         "vel_x_mps": speed, "vel_y_mps": 0.0, "vel_z_mps": 0.0,
         **{f"r_gh_{i}{j}": float(r_gh[i, j]) for i in range(3) for j in range(3)},
         "density_kg_m3": op.density_kg_m3, "speed_of_sound_mps": op.speed_of_sound_mps,

@@ -20,13 +20,13 @@ import importlib
 from typing import Callable
 
 # the stages, in workflow order (``radiate``, for tabulated sources, is not in the study workflow;
-# ``rig``, the set-up of a rig, and ``carpet`` are the rig-only stages, workflow/rules/rig.smk; ``case``, the
+# ``rig``, the set-up of a rig, ``carpet`` and ``station_loads`` are the rig-only stages, workflow/rules/rig.smk; ``case``, the
 # chain of one design-study case in one process, and ``trade``, a study's trade table: designs.smk;
 # ``results_summary``, the campaign's results page the report opens on: study.smk);
 # stage X is ``nps.stages.X.run``
 STAGES = ("trim", "loads", "wake", "observers", "acoustics", "hsi", "metrics", "tones",
           "rotor_figures", "hsi_figure", "study_maps", "rotor_maps", "bvi_hotspot", "summary", "results_summary",
-          "source_hemisphere", "footprint", "certification", "radiate", "rig", "carpet", "case", "trade")
+          "source_hemisphere", "footprint", "certification", "radiate", "rig", "carpet", "station_loads", "case", "trade")
 
 
 def stage_module(stage: str) -> str:

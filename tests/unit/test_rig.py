@@ -161,7 +161,7 @@ def test_rotor_command_reproduces_closed_form_hover(tmp_path, capsys):
 def test_bundled_rigs_validate():
     rigs = {p.stem: load_rig(p) for p in sorted((REPO / "config/rigs").glob("*.yaml"))}
     hart_ii = {"hart_ii_bl", "hart_ii_bl_measured", "hart_ii_mn_measured", "hart_ii_mv_measured"}
-    assert set(rigs) == hart_ii | {"itr_hover"}
+    assert set(rigs) == hart_ii | {"itr_hover", "main_tail_rig"}
     for name in hart_ii:
         assert rigs[name]["microphones_T"].shape == (221, 3)
         assert np.all(rigs[name]["microphones_T"][:, 2] == -2.215)

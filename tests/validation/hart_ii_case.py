@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from nps.rotor import bet
+from nps.rotor import bet, station_loads
 
 from nps.wake import bvi
 
@@ -148,8 +148,9 @@ class HartResult:
 
 
 def cn_m2(fz_N_per_m, rho: float = RHO, c0: float = C0):
-    """M²C_n = F_n / (½ ρ c0² c), F_n ≈ F_z (normal force per span)."""
-    return np.asarray(fz_N_per_m) / (0.5 * rho * c0**2 * CHORD)
+    """M²C_n = F_n / (½ ρ c0² c), F_n ≈ F_z (normal force per span): :func:`nps.rotor.station_loads.m2cn`, the
+    station-loads output's definition."""
+    return station_loads.m2cn(fz_N_per_m, rho, c0, CHORD)
 
 
 def run(n_psi: int = 360, n_r: int = 50, model: wake.WakeModel | None = None, bvi_model: bvi.BVIModel = bvi.BVIModel()) -> HartResult:

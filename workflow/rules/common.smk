@@ -90,9 +90,9 @@ def setting(section, key=None):
 
 
 def aircraft_config(wildcards):
-    """The whole validated aircraft configuration (a rig's: its one rotor)."""
+    """The whole validated aircraft configuration (a rig's: its rotors)."""
     if is_rig(wildcards):
-        return {"rotors": [RIGS[wildcards.segment]["rotor_config"]]}
+        return {"rotors": RIGS[wildcards.segment]["rotor_configs"]}
     return CAMPAIGN.aircraft[wildcards.aircraft]
 
 
@@ -269,9 +269,12 @@ def rig_variant(rig):
 
 
 def rig_targets(rig):
-    """A rig's products: its microphones' metrics and, where asked, the carpet."""
+    """A rig's products: its microphones' metrics and, where asked, the carpet and the loads at its stations
+    (stations_r_over_R: of the trimmed loads, and of the BVI loads where models.bvi)."""
     base = f"{RESULTS}/{RIG_AIRCRAFT}/{rig}"
-    return [f"{base}/metrics/microphones_{rig_variant(rig)}.parquet"] + ([f"{base}/carpet.png"] if RIGS[rig]["carpet"] else [])
+    stations = [f"{base}/station_loads/{v}.parquet" for v in dict.fromkeys(("base", rig_variant(rig)))]
+    return ([f"{base}/metrics/microphones_{rig_variant(rig)}.parquet"] + ([f"{base}/carpet.png"] if RIGS[rig]["carpet"] else [])
+            + (stations if "stations_r_over_R" in RIGS[rig] else []))
 
 
 # ---- resources: mem_mb of the jobs whose arrays scale with the resolution (nps.app.resources) ----

@@ -2,7 +2,8 @@
 # hub-fixed microphones. The study's rules run a rig as aircraft "rigs", segment NAME (results/rigs/NAME/,
 # common.smk): the set-up here (stage rig) writes the trim row and the microphone table (observer set
 # "microphones"); the study's loads, wake (+ BVI loads) where models.bvi, acoustics and metrics rules follow,
-# with the rig's own settings; the BVISPL carpet of the plane microphone groups where `carpet`.
+# with the rig's own settings; the BVISPL carpet of the plane microphone groups where `carpet`, and the loads at
+# the radial stations (station_loads) where `stations_r_over_R`. A rig may hold several rotors (rotors:).
 # Targets: `snakemake -j2 rigs` (every rig), or one rig by its name (`snakemake -j2 hart_ii_bl`).
 
 # a rig's trim and microphones are the set-up's, not the aircraft trim's or an observer set's
@@ -54,6 +55,32 @@ rule carpet:
     resources:
         mem_mb=job_mem_mb("carpet"),
         runtime=job_runtime("carpet"),
+    script:
+        STAGE_SCRIPT
+
+
+# C_n and M^2 C_n against azimuth at the rig's stations_r_over_R, every rotor (nps.stages.station_loads), from the
+# trimmed loads (base) or the loads with the wake's induced velocity (bvi)
+rule station_loads:
+    input:
+        disks=variant_disks,
+        trim=f"{BASE}/trim.parquet",
+    output:
+        table=f"{BASE}/station_loads/{{variant}}.parquet",
+    wildcard_constraints:
+        aircraft=RIG_AIRCRAFT,
+    params:
+        stations=lambda wildcards: RIGS[wildcards.segment]["stations_r_over_R"],
+        rotors=job_rotors,
+        code=code("station_loads"),
+    log:
+        log_path("station_loads", "{aircraft}/{segment}_{variant}"),
+    benchmark:
+        bench_path("station_loads", "{aircraft}/{segment}_{variant}")
+    threads: 1
+    resources:  # a set-up-sized job (tables of one rotor each): the rig stage's requests
+        mem_mb=job_mem_mb("rig"),
+        runtime=job_runtime("rig"),
     script:
         STAGE_SCRIPT
 

@@ -1,0 +1,71 @@
+"""End-to-end: the bundled main + tail rotor rig (config/rigs/main_tail_rig.yaml) through the Snakefile: set-up
+(two rows), loads, the free wake of both rotors with each rotor's own control in the re-trim, acoustics, metrics
+and the loads at its stations (station_loads, base and bvi); a dry run of the rig targets."""
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from nps.app.io import read_metadata, read_table
+
+REPO = Path(__file__).resolve().parents[2]
+RIG = "main_tail_rig"
+
+
+def _snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(REPO / ".numba_cache"))
+    return subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(workdir), *args],
+                          capture_output=True, text=True, env=env, timeout=900)
+
+
+def _work(tmp_path: Path, keep=(RIG,)) -> Path:
+    root = tmp_path / "work"
+    shutil.copytree(REPO / "config", root / "config")
+    for path in (root / "config" / "rigs").glob("*.yaml"):
+        if path.stem not in keep:
+            path.unlink()
+    return root
+
+
+def test_dry_run_lists_the_station_loads_jobs(tmp_path):
+    """The rig's targets: metrics of the BVI variant and the station loads of both variants; a rig without
+    stations_r_over_R (the HART-II baseline) keeps its targets (no station_loads job)."""
+    root = _work(tmp_path, keep=(RIG, "hart_ii_bl"))
+    dry = _snakemake(root, "-n", RIG)
+    assert dry.returncode == 0, dry.stderr[-4000:]
+    jobs = re.findall(r"^(?:localrule|rule) (\w+):", dry.stdout, flags=re.M)
+    assert sorted(jobs) == sorted(["rig", "loads", "wake", "acoustics", "metrics", "station_loads", "station_loads", RIG])
+    for variant in ("base", "bvi"):
+        assert f"results/rigs/{RIG}/station_loads/{variant}.parquet" in dry.stdout
+    other = _snakemake(root, "-n", "hart_ii_bl")
+    assert other.returncode == 0 and "station_loads" not in other.stdout, other.stderr[-2000:]
+
+
+def test_main_tail_rig_end_to_end(tmp_path):
+    root = _work(tmp_path)
+    result = _snakemake(root, "-j2", RIG)
+    assert result.returncode == 0, result.stderr[-4000:]
+    base = root / "results" / "rigs" / RIG
+    trim = read_table(base / "trim.parquet")
+    assert list(trim["rotor"]) == ["main", "tail"] and trim["omega_rad_s"].iloc[1] == 5 * trim["omega_rad_s"].iloc[0]
+    summary = read_table(base / "wake" / "interaction.parquet")
+    retrimmed = summary.groupby("rotor")["retrimmed"].first()
+    assert not retrimmed["tail"]  # fixed pitch: its thrust is the answer, never re-trimmed
+    for variant in ("base", "bvi"):
+        table = read_table(base / "station_loads" / f"{variant}.parquet")
+        assert list(table.columns) == ["rotor", "r_over_R", "psi_rad", "cn", "m2cn"]
+        assert len(table) == 2 * 2 * 36 and np.isfinite(table[["cn", "m2cn"]].to_numpy()).all()
+        assert read_metadata(base / "station_loads" / f"{variant}.parquet")["stage"] == "station_loads"
+    base_loads = read_table(base / "station_loads" / "base.parquet")
+    bvi_loads = read_table(base / "station_loads" / "bvi.parquet")
+    assert not np.allclose(base_loads["m2cn"], bvi_loads["m2cn"])  # the wakes' induced velocity changes the loads
+    metrics = read_table(base / "metrics" / "microphones_bvi.parquet")
+    assert len(metrics) == 5 and np.isfinite(metrics["oaspl_db"]).all()
+    for stage in ("station_loads",):
+        assert (root / "results" / "logs" / stage / "rigs" / f"{RIG}_bvi.log").is_file()
+        assert (root / "results" / "benchmarks" / stage / "rigs" / f"{RIG}_bvi.tsv").is_file()
