@@ -879,6 +879,25 @@ def _station_problems(stations: list, rotors: list[dict], n_r: int) -> list[tupl
     return problems
 
 
+def _period_problems(data: Mapping, rotors, conditions) -> list[tuple[str, str]]:
+    """A rig whose free wake runs over a common period (``wake.free.common_period``) needs its rotors' speeds in a
+    common period (nps.core.periods.common_period with the rig's tolerance and longest period)."""
+    from nps.core import periods
+    from nps.rig.case import omega_of
+
+    free = data.get("wake", {}).get("free", {})
+    if (data.get("wake", {}).get("model") != "free" or not free.get("common_period") or len(rotors) < 2
+            or not all("omega_rad_s" in c or "rpm" in c for c in conditions)):
+        return []
+    try:
+        periods.common_period([r["name"] for r in rotors], [omega_of(c) for c in conditions],
+                              free.get("period_tolerance", periods.DEFAULT_TOLERANCE),
+                              free.get("max_period_revolutions", periods.DEFAULT_MAX_REVOLUTIONS))
+    except periods.PeriodError as exc:
+        return [("wake.free.common_period", str(exc))]
+    return []
+
+
 def load_rig(path: str | Path) -> dict:
     """Read and validate one rig (``config/rigs/*.yaml``, nps.rig.case) with its rotor(s).
 
@@ -900,6 +919,7 @@ def load_rig(path: str | Path) -> dict:
     if path.stem != data["name"]:
         _raise(path, [("name", f"expected the file stem '{path.stem}', got '{data['name']}'")])
     rotors, conditions = _rig_rotors(data, path)
+    _raise(path, _period_problems(data, rotors, conditions))
     if "stations_r_over_R" in data:
         _raise(path, _station_problems(data["stations_r_over_R"], rotors, int(data["resolution"]["n_r"])))
     try:

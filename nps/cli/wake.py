@@ -33,7 +33,7 @@ def main(argv: list[str]) -> int:
     for field in FREE_FIELDS:
         option(ap, f"--free-{field.replace('_', '-')}", f"wake.free.{field}", dest=f"free_{field}",
                help=f"free wake (--model free): {schema_field(f'wake.free.{field}').get('description', field)} "
-                    "(default: nps.wake.free.FreeWakeModel's)")
+                    "(default: nps.wake.free.FreeWakeModel's)".replace("%", "%%"))
     option(ap, "--revolutions", "resolution.wake_revolutions", help="wake age kept")
     option(ap, "--steps-per-rev", "resolution.n_psi", help="vortex segments per revolution")
     args = ap.parse_args(argv)

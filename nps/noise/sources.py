@@ -42,6 +42,7 @@ from typing import Mapping
 import numpy as np
 import pandas as pd
 
+from nps.core import periods
 from nps.noise.acoustics import (C0_MPS, LOADING, RHO0_KG_M3, THICKNESS, AcousticsError, CompactSources, Observers, TimeGrid,
                            radiate_arrays, time_derivative)
 from nps.rotor.geometry import RotorMotion
@@ -95,7 +96,8 @@ def _rotating_derivative(comp: np.ndarray, dpsi: float) -> np.ndarray:
 
 
 def disk_arrays(disk: pd.DataFrame, what: str = "disk table") -> dict[str, np.ndarray]:
-    """Disk table → (n_psi, n_r) arrays; checks columns, ψ-major order, uniform ψ grid, finiteness."""
+    """Disk table → (n_psi, n_r) arrays; checks columns, ψ-major order, uniform ψ grid, finiteness.
+    A table over m revolutions of a common period (ψ_i = 2πi/N, i < mN) gives (mN, n_r) arrays."""
     missing = [c for c in DISK_COLUMNS if c not in disk.columns]
     if missing:
         raise AcousticsError(f"{what}: missing column(s) {missing}")
@@ -108,19 +110,21 @@ def disk_arrays(disk: pd.DataFrame, what: str = "disk table") -> dict[str, np.nd
         raise AcousticsError(f"{what}: {len(disk)} rows is not n_psi x n_r with n_psi = {n_psi}")
     n_r = len(disk) // n_psi
     out = {c: disk[c].to_numpy(float).reshape(n_psi, n_r) for c in DISK_COLUMNS}
-    expected = 2.0 * np.pi * np.arange(n_psi) / n_psi
-    if not np.allclose(out["psi_rad"], expected[:, None], atol=1e-9):
-        raise AcousticsError(f"{what}: 'psi_rad' must be ψ-major with ψ_i = 2π i / {n_psi}")
+    revolutions = periods.table_revolutions(psi_values)
+    expected = 2.0 * np.pi * np.arange(n_psi) * revolutions / n_psi
+    if n_psi % revolutions or not np.allclose(out["psi_rad"], expected[:, None], atol=1e-9):
+        raise AcousticsError(f"{what}: 'psi_rad' must be ψ-major with ψ_i = 2π i / N, i < {n_psi} (N = {n_psi} for one "
+                             "revolution, or N per revolution over the revolutions of a common period)")
     return out
 
 
 def _blade_components(disk: Mapping[str, np.ndarray], model: ThicknessModel, hinge_offset_m: float, rho0: float,
-                      omega: float, air_rot: np.ndarray):
+                      omega: float, air_rot: np.ndarray, dpsi: float):
     """Rotating-frame position and force-on-fluid components per line: lists of (n_psi, n_r, 3).
 
     ``air_rot`` (n_psi, 1, 3): the hub's velocity relative to the medium (aircraft velocity) in
     rotating components at each table azimuth; the dual-compact forces need the lines' own
-    velocities relative to the medium, Ω·(Dq) + air_rot.
+    velocities relative to the medium, Ω·(Dq) + air_rot; ``dpsi``: the table's azimuth step (rad).
     """
     r, dr, chord, thick = disk["r_m"], disk["dr_m"], disk["chord_m"], disk["thickness_m"]
     theta, beta = disk["theta_rad"], disk["beta_rad"]
@@ -134,7 +138,6 @@ def _blade_components(disk: Mapping[str, np.ndarray], model: ThicknessModel, hin
     lines = [(position(np.zeros_like(r)), np.stack([np.zeros_like(r), disk["fx_N_per_m"] * dr, -disk["fz_N_per_m"] * dr], axis=-1),
               LOADING, np.zeros(r.shape[1]))]
     if model.kind == DUAL_COMPACT:
-        dpsi = 2.0 * np.pi / r.shape[0]
         chord_dir = np.stack([-st * sb, ct, st * cb], axis=-1)  # e_c, toward the leading edge
         front, rear = model.chord_fractions
         strength = rho0 * area * dr / ((rear - front) * chord)  # ρ0 (A/D) dr, kg/m
@@ -148,14 +151,15 @@ def _blade_components(disk: Mapping[str, np.ndarray], model: ThicknessModel, hin
     return lines
 
 
-def _air_velocity_rotating(motion: RotorMotion, n_psi: int) -> np.ndarray:
-    """Flight velocity in the blade-fixed rotating frame at the table's azimuths, (n_psi, 1, 3) m/s."""
+def _air_velocity_rotating(motion: RotorMotion, n_rows: int, n_psi: int) -> np.ndarray:
+    """Flight velocity in the blade-fixed rotating frame at the table's azimuths ψ_i = 2πi/``n_psi``,
+    i < ``n_rows``, (n_rows, 1, 3) m/s."""
     s = motion.rotation_sign
-    psi_table = 2.0 * np.pi * np.arange(n_psi) / n_psi
+    psi_table = 2.0 * np.pi * np.arange(n_rows) / n_psi
     v_h = motion.r_gh.T @ np.asarray(motion.velocity_mps, dtype=float)
     return np.stack([v_h[0] * np.cos(psi_table) + v_h[1] * s * np.sin(psi_table),
                      -v_h[0] * np.sin(psi_table) + v_h[1] * s * np.cos(psi_table),
-                     np.full(n_psi, v_h[2])], axis=-1)[:, None, :]
+                     np.full(n_rows, v_h[2])], axis=-1)[:, None, :]
 
 
 def _rotating_kinematics(lines, omega: float, dpsi: float, air_rot: np.ndarray, c0_mps: float, n_r: int):
@@ -182,28 +186,38 @@ def _rotating_kinematics(lines, omega: float, dpsi: float, air_rot: np.ndarray, 
     return stack, np.concatenate(groups_d), np.concatenate(volumes).astype(float)
 
 
-def _source_steps(tau_range_s, n_psi: int, n_blades: int, period: float, phase_rad: float = 0.0) -> tuple[np.ndarray, list[int]]:
-    """Source-time steps and blades: blade 0 over one revolution (periodic), else every blade over ``tau_range_s``.
-    Step i is the source time τ_i = (2π i/n_psi − phase_rad)/Ω, when blade 0 is at the table azimuth ψ_i."""
-    if tau_range_s is None:
-        return np.arange(n_psi), [0]
-    if n_psi % n_blades:
-        raise AcousticsError(f"disk table: n_psi = {n_psi} must be divisible by n_blades = {n_blades} for stationary observers")
+def _source_steps(tau_range_s, n_psi: int, period: float, phase_rad: float = 0.0) -> np.ndarray:
+    """Source-time steps covering ``tau_range_s``: step i is τ_i = (2π i/n_psi − phase_rad)/Ω, when blade 0 is
+    at the table azimuth ψ_i (``period`` = 2π/Ω)."""
     shift = phase_rad / (2.0 * np.pi) * period  # the step grid's time shift (s)
-    steps = np.arange(int(np.floor((tau_range_s[0] + shift) / period * n_psi)),
-                      int(np.ceil((tau_range_s[1] + shift) / period * n_psi)) + 1)
-    return steps, list(range(n_blades))
+    return np.arange(int(np.floor((tau_range_s[0] + shift) / period * n_psi)),
+                     int(np.ceil((tau_range_s[1] + shift) / period * n_psi)) + 1)
+
+
+def _blade_shifts(n_psi: int, n_blades: int, blade_shift_steps, why: str) -> list[int]:
+    """Table-row shift of each blade (blade k's loads at row i are those of row i + shift_k): the given
+    ``blade_shift_steps`` (a common-period table's, from the wake), else equal spacing k n_psi/B."""
+    if blade_shift_steps is None:
+        if n_psi % n_blades:
+            raise AcousticsError(f"disk table: n_psi = {n_psi} must be divisible by n_blades = {n_blades} {why}")
+        return [k * n_psi // n_blades for k in range(n_blades)]
+    shifts = [int(x) for x in blade_shift_steps]
+    if len(shifts) != n_blades or shifts[0] != 0 or any(x < 0 for x in shifts):
+        raise AcousticsError(f"disk table: blade_shift_steps {list(blade_shift_steps)}: expected {n_blades} table-row "
+                             "shifts (one per blade, 0 for blade 0, none negative)")
+    return shifts
 
 
 def _ground_frame_lines(stack, motion: RotorMotion, steps: np.ndarray, blades: list[int], tau: np.ndarray,
-                        n_psi: int, phase_rad: float = 0.0) -> list[np.ndarray]:
+                        shifts: list[int], phase_rad: float = 0.0) -> list[np.ndarray]:
     """The six rotating-frame components of every blade at source times ``tau`` in the ground frame (position
     and velocity with the hub's flight added), each (n_blade·n_source, n_tau, 3); blade k at
-    ψ_k = Ω τ + phase_rad + 2πk/B, on the table's azimuth ``steps`` + k n_psi/B."""
+    ψ_k = Ω τ + phase_rad + 2πk/B, with the table's row ``steps`` + ``shifts[k]`` (periodic in the table's rows)."""
     omega, s, n_blades, r_gh = motion.omega_rad_s, motion.rotation_sign, motion.n_blades, motion.r_gh
+    n_rows = stack[0].shape[0]
     out = [[] for _ in range(6)]
     for k in blades:
-        index = (steps + k * n_psi // n_blades) % n_psi
+        index = (steps + shifts[k]) % n_rows
         psi = omega * tau + phase_rad + 2.0 * np.pi * k / n_blades
         e_r = np.stack([np.cos(psi), s * np.sin(psi), np.zeros_like(psi)], axis=-1)
         e_t = np.stack([-np.sin(psi), s * np.cos(psi), np.zeros_like(psi)], axis=-1)
@@ -221,7 +235,8 @@ def _ground_frame_lines(stack, motion: RotorMotion, steps: np.ndarray, blades: l
 
 def rotor_sources(disk: pd.DataFrame, motion: RotorMotion, *, thickness: ThicknessModel = ThicknessModel(),
                   hinge_offset_m: float = 0.0, rho0_kg_m3: float, c0_mps: float,
-                  tau_range_s: tuple[float, float] | None = None, phase_rad: float = 0.0) -> CompactSources:
+                  tau_range_s: tuple[float, float] | None = None, phase_rad: float = 0.0,
+                  blade_shift_steps=None) -> CompactSources:
     """Compact source lines of one rotor in the ground frame (ρ0 in kg/m³; c0 in m/s, every line
     must move subsonically relative to the medium).
 
@@ -234,21 +249,35 @@ def rotor_sources(disk: pd.DataFrame, motion: RotorMotion, *, thickness: Thickne
     other B − 1 blades are implied by symmetry: identical loads vs ψ). Otherwise all blades at
     the τ_i covering ``tau_range_s`` (requires n_psi divisible by B so every blade sits on
     the table's ψ grid).
+
+    A table over m revolutions of a common period (ψ_i = 2πi/N, i < mN; docs/reference/wake_bvi.md
+    "Common period"): blade 0's loads over the period, blade k's those of row i + ``blade_shift_steps[k]``
+    at row i (None: kN/B, the same revolution); periodic sources hold every blade over the period m 2π/Ω.
     """
     arrays = disk_arrays(disk)
-    n_psi, n_r = arrays["r_m"].shape
+    n_rows, n_r = arrays["r_m"].shape
+    revolutions = periods.table_revolutions(arrays["psi_rad"][:, 0])
+    n_psi = n_rows // revolutions
     dpsi = 2.0 * np.pi / n_psi
     omega = motion.omega_rad_s
     if not omega > 0:
         raise AcousticsError(f"trim row: omega_rad_s must be positive, got {omega}")
     period = 2.0 * np.pi / omega
-    air_rot = _air_velocity_rotating(motion, n_psi)
-    lines = _blade_components(arrays, thickness, hinge_offset_m, rho0_kg_m3, omega, air_rot)
+    air_rot = _air_velocity_rotating(motion, n_rows, n_psi)
+    lines = _blade_components(arrays, thickness, hinge_offset_m, rho0_kg_m3, omega, air_rot, dpsi)
     stack, group_names, volume = _rotating_kinematics(lines, omega, dpsi, air_rot, c0_mps, n_r)
     n_blades = motion.n_blades
-    steps, blades = _source_steps(tau_range_s, n_psi, n_blades, period, phase_rad)
+    symmetric = revolutions == 1 and blade_shift_steps is None
+    if tau_range_s is None and symmetric:  # blade 0 over one revolution, the others by symmetry
+        steps, blades, shifts, copies, source_period = np.arange(n_psi), [0], [0], n_blades, period
+    elif tau_range_s is None:  # every blade over the common period
+        shifts = _blade_shifts(n_psi, n_blades, blade_shift_steps, "for a table over several revolutions")
+        steps, blades, copies, source_period = np.arange(n_rows), list(range(n_blades)), 1, revolutions * period
+    else:
+        shifts = _blade_shifts(n_psi, n_blades, blade_shift_steps, "for stationary observers")
+        steps, blades, copies, source_period = _source_steps(tau_range_s, n_psi, period, phase_rad), list(range(n_blades)), 1, None
     tau = steps * period / n_psi - phase_rad / omega
-    arrays6 = _ground_frame_lines(stack, motion, steps, blades, tau, n_psi, phase_rad)
+    arrays6 = _ground_frame_lines(stack, motion, steps, blades, tau, shifts, phase_rad)
     names = np.tile(group_names, len(blades))
     volume = np.tile(volume, len(blades))
     groups = (LOADING, THICKNESS)
@@ -259,24 +288,28 @@ def rotor_sources(disk: pd.DataFrame, motion: RotorMotion, *, thickness: Thickne
         monopole = np.full(names.size, -1, dtype=np.int64)
     return CompactSources(
         tau, *arrays6, volume, groups, dipole, monopole,
-        period_s=period if tau_range_s is None else None,
+        period_s=source_period,
         frame_velocity_mps=np.asarray(motion.velocity_mps, float) if tau_range_s is None else None,
-        copies=n_blades if tau_range_s is None else 1,
+        copies=copies,
     )
 
 
 # ----------------------------------------------------------------------------------------------
 # rotor radiation: disk table + trim row -> compact sources -> F1A solver
 # ----------------------------------------------------------------------------------------------
-def common_grid(reference_trim_row, samples_per_rev: int) -> TimeGrid:
+def common_grid(reference_trim_row, samples_per_rev: int, revolutions: int = 1) -> TimeGrid:
     """The aircraft's common observer grid: one revolution of the reference rotor from t = 0
-    (blade 0 of every rotor at ψ = 0) with ``samples_per_rev`` samples."""
+    (blade 0 of every rotor at ψ = 0) with ``samples_per_rev`` samples; ``revolutions`` of it over a
+    common period (``revolutions`` × ``samples_per_rev`` samples)."""
     if samples_per_rev < 8:
         raise AcousticsError(f"samples_per_rev: expected at least 8, got {samples_per_rev}")
+    if int(revolutions) != revolutions or revolutions < 1:
+        raise AcousticsError(f"revolutions: expected a whole number >= 1, got {revolutions}")
     omega = float(reference_trim_row["omega_rad_s"])
     if not omega > 0:
         raise AcousticsError(f"rotor '{reference_trim_row['rotor']}': omega_rad_s must be positive, got {omega}")
-    return TimeGrid(0.0, 2.0 * np.pi / omega, int(samples_per_rev))
+    m = int(revolutions)
+    return TimeGrid(0.0, 2.0 * np.pi * m / omega, int(samples_per_rev) * m)
 
 
 def _emission_time(x0: np.ndarray, v_obs: np.ndarray, t_s: float, y0: np.ndarray, v_src: np.ndarray, c0: float) -> np.ndarray:
@@ -288,11 +321,12 @@ def _emission_time(x0: np.ndarray, v_obs: np.ndarray, t_s: float, y0: np.ndarray
 
 
 def radiate_rotor(disk: pd.DataFrame, trim_row, observers: Observers, grid: TimeGrid, *, thickness=None,
-                  hinge_offset_m: float = 0.0, phase_rad: float = 0.0) -> np.ndarray:
+                  hinge_offset_m: float = 0.0, phase_rad: float = 0.0, blade_shift_steps=None) -> np.ndarray:
     """Pressure (Pa) of one rotor, shape (n_obs, 2, n_samples), groups (loading, thickness).
 
     ``disk``: disk table (docs/reference/conventions.md), ``trim_row``: the rotor's ``trim.parquet`` row
-    (kinematics, ρ0 and c0); ``phase_rad`` the azimuth of its blade 0 at t = 0 (:func:`rotor_sources`).
+    (kinematics, ρ0 and c0); ``phase_rad`` the azimuth of its blade 0 at t = 0, ``blade_shift_steps`` the blades'
+    rows in a common-period table (:func:`rotor_sources`).
     Observers moving with the aircraft use the periodic one-blade
     path (exact periodicity and blade symmetry); any other observers get all blades over the
     source-time span their window needs.
@@ -301,12 +335,15 @@ def radiate_rotor(disk: pd.DataFrame, trim_row, observers: Observers, grid: Time
     motion = RotorMotion.from_trim_row(trim_row)
     c0 = float(trim_row["speed_of_sound_mps"])
     rho0 = float(trim_row["density_kg_m3"])
-    kwargs = dict(thickness=thickness, hinge_offset_m=hinge_offset_m, rho0_kg_m3=rho0, c0_mps=c0, phase_rad=phase_rad)
+    kwargs = dict(thickness=thickness, hinge_offset_m=hinge_offset_m, rho0_kg_m3=rho0, c0_mps=c0, phase_rad=phase_rad,
+                  blade_shift_steps=blade_shift_steps)
     if np.allclose(observers.velocity_mps, motion.velocity_mps[None, :], rtol=0.0, atol=1e-9 * c0):
         sources = rotor_sources(disk, motion, **kwargs)
     else:
         reach = float((disk["r_m"] + disk["dr_m"] + disk["chord_m"]).max())
-        margin = 2.0 * reach / (c0 - np.linalg.norm(motion.velocity_mps)) + 8.0 * 2.0 * np.pi / motion.omega_rad_s / disk["psi_rad"].nunique()
+        psi = np.unique(disk["psi_rad"].to_numpy(float))
+        n_psi = psi.size // periods.table_revolutions(psi)  # azimuths per revolution
+        margin = 2.0 * reach / (c0 - np.linalg.norm(motion.velocity_mps)) + 8.0 * 2.0 * np.pi / motion.omega_rad_s / n_psi
         t_last = grid.t_start_s + (grid.n_samples - 1) * grid.dt_s
         first = _emission_time(observers.position_m, observers.velocity_mps, grid.t_start_s, motion.hub_position_m, motion.velocity_mps, c0)
         last = _emission_time(observers.position_m, observers.velocity_mps, t_last, motion.hub_position_m, motion.velocity_mps, c0)

@@ -150,10 +150,12 @@ def wake_figure_from_tables(wake_table, loads_disk, path, *, radius_m: float, ti
 
 
 def bvi_figure_from_tables(loads_disk, bvi_disk, path, *, rotation_sign: int, title: str = "") -> None:
-    """:func:`bvi_disk_figure` of a loads table and its BVI table (ΔU_P = difference of U_P)."""
+    """:func:`bvi_disk_figure` of a loads table and its BVI table (ΔU_P = difference of U_P); of a BVI table over
+    several turns of a common period, its first turn."""
     psi = np.unique(loads_disk["psi_rad"].to_numpy())
     r = np.unique(loads_disk["r_m"].to_numpy())
     shape = (psi.size, r.size)
+    bvi_disk = bvi_disk.iloc[: psi.size * r.size]
     d_up = (bvi_disk["up_mps"].to_numpy() - loads_disk["up_mps"].to_numpy()).reshape(shape)
     fig = bvi_disk_figure(psi, r, d_up, loads_disk["fz_N_per_m"].to_numpy().reshape(shape),
                           bvi_disk["fz_N_per_m"].to_numpy().reshape(shape), rotation_sign=rotation_sign, title=title)

@@ -11,7 +11,9 @@ legacy-VTK series of each rotor's wake for ParaView.
 inputs: ``trim`` (trim.parquet), ``loads`` (directory of the loads stage). outputs: ``wake``
 (directory: ``{rotor}.parquet`` wake geometry, :data:`nps.wake.prescribed.WAKE_COLUMNS`, one row per vortex
 node per snapshot over one blade passage, ``{rotor}_vtk/``, with the free wake ``interaction.parquet``), ``bvi`` (directory:
-``{rotor}.parquet``, BVI disk table with the loads' columns). params: ``rotors`` (rotor name →
+``{rotor}.parquet``, BVI disk table with the loads' columns; over a common period (``wake.free.common_period``) m
+revolutions of blade 0, ψ_i = 2πi/N for i < mN, with ``revolutions`` and ``blade_shift_steps`` in its metadata,
+:meth:`nps.wake.free.FreeWakeSolution.period_record`). params: ``rotors`` (rotor name →
 validated rotor configuration), ``wake`` (the config ``wake`` section, defaults filled: model, A, B, C, D,
 core_radius_chords, core_growth, vortex_structure, step_deg (snapshot spacing), unsteady (Sears response),
 free), ``revolutions`` (wake age kept), ``steps_per_rev`` (vortex segments per revolution),
@@ -106,12 +108,17 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
         _vtk_series(wake_dir / f"{name}_vtk", name, state, table, psi, motion, float(disk["r_m"].min() - 0.5 * disk["dr_m"].iloc[0]))
         # BVI loads: the wake's induced velocity on the blades
         result = coupled.results[name] if free else bvi.bvi_loads(disk, row, RotorGeometry.from_config(rotor), ct, model, bvi_model)
+        period = (coupled.solution.period_record(coupled.solution.index(name), disk["psi_rad"].nunique())
+                  if free else {})
         write_table(result.disk, rotor_path(bvi_dir, name), stage="bvi",
-                    metadata={**meta, "bvi_model": bvi_model.__dict__, "inputs": inputs_of})
+                    metadata={**meta, **period, "bvi_model": bvi_model.__dict__, "inputs": inputs_of})
         report.append(f"rotor {name}: {len(table)} wake nodes; peak |dU_P| = {abs(result.d_up_mps).max():.4g} m/s, "
                       f"peak |dU_T| = {abs(result.d_ut_mps).max():.4g} m/s" + validity.report(warnings[name]))
     if free:
+        timing = coupled.solution.timing
+        periods = [p.describe() for p in timing.periods] if timing is not None else []
         write_table(coupled.summary, wake_dir / "interaction.parquet", stage="wake",
-                    metadata={"aircraft": params["aircraft"], "segment": params["segment"], "free_wake": params["wake"]["free"]})
-        report.append(coupled.summary.to_string(index=False))
+                    metadata={"aircraft": params["aircraft"], "segment": params["segment"], "free_wake": params["wake"]["free"],
+                              **({"common_periods": periods} if periods else {})})
+        report += periods + [coupled.summary.to_string(index=False)]
     return "\n".join(report)

@@ -59,6 +59,7 @@ import numpy as np
 import pandas as pd
 from scipy import special
 
+from nps.core import periods
 from nps.core.jit import kernel, prange
 from nps.wake import prescribed as wake
 from nps.wake import vortex
@@ -93,20 +94,24 @@ class BVIModel:
 
 @dataclass(frozen=True)
 class DiskGridView:
-    """Azimuths (n_psi,), radial stations (n_r,) and the reshape of a ψ-major disk table."""
+    """Azimuths (n_psi,), radial stations (n_r,) and the reshape of a ψ-major disk table;
+    ``revolutions``: the turns of blade 0 the table spans (1, or m of a common period)."""
 
     psi_rad: np.ndarray
     r_m: np.ndarray
+    revolutions: int = 1
 
     @property
     def shape(self) -> tuple[int, int]:
         return (self.psi_rad.size, self.r_m.size)
 
 
-def disk_grid(disk: pd.DataFrame, what: str = "disk table") -> DiskGridView:
+def disk_grid(disk: pd.DataFrame, what: str = "disk table", common_period: bool = False) -> DiskGridView:
     """Check that ``disk`` is a ψ-major table on ψ_i = 2πi/N_ψ and return its grid.
 
-    Raises ValueError naming the table and the failed expectation.
+    ``common_period``: also accept a table over m revolutions of a common period, ψ_i = 2πi/N for
+    i = 0…mN−1 (docs/reference/wake_bvi.md, "Common period"). Raises ValueError naming the table
+    and the failed expectation.
     """
     missing = [c for c in DISK_COLUMNS if c not in disk.columns]
     if missing:
@@ -118,13 +123,45 @@ def disk_grid(disk: pd.DataFrame, what: str = "disk table") -> DiskGridView:
     n_r = psi.size // max(n_psi, 1)
     if n_psi < 4 or n_psi * n_r != psi.size:
         raise ValueError(f"{what}: psi_rad/r_m do not form a full grid ({psi.size} rows, {n_psi} azimuths)")
-    if not np.allclose(psi_u, 2.0 * np.pi * np.arange(n_psi) / n_psi, atol=1e-9):
-        raise ValueError(f"{what}: psi_rad must be 2*pi*i/N_psi, i = 0..N_psi-1")
+    revolutions = periods.table_revolutions(psi_u)
+    if not np.allclose(psi_u, 2.0 * np.pi * np.arange(n_psi) * revolutions / n_psi, atol=1e-9):
+        raise ValueError(f"{what}: psi_rad must be 2*pi*i/N_psi, i = 0..N_psi-1"
+                         + (" (or over m revolutions i = 0..m*N_psi-1)" if common_period else ""))
+    if revolutions > 1 and not common_period:
+        raise ValueError(f"{what}: psi_rad spans {revolutions} revolutions (a common-period table); expected one "
+                         "revolution, psi_rad = 2*pi*i/N_psi, i = 0..N_psi-1")
     psi2 = psi.reshape(n_psi, n_r)
     r2 = r.reshape(n_psi, n_r)
     if not (np.all(psi2 == psi2[:, :1]) and np.all(r2 == r2[:1, :])):
         raise ValueError(f"{what}: rows must be psi-major (all radial stations of one azimuth together)")
-    return DiskGridView(psi2[:, 0].copy(), r2[0].copy())
+    return DiskGridView(psi2[:, 0].copy(), r2[0].copy(), revolutions)
+
+
+def tile_disk(disk: pd.DataFrame, revolutions: int) -> pd.DataFrame:
+    """A one-revolution ψ-major disk table repeated over ``revolutions`` turns, ψ_i = 2πi/N for
+    i = 0…mN−1 (the loads of a rotor before its rev-to-rev interference is added)."""
+    if revolutions == 1:
+        return disk
+    n_psi = disk["psi_rad"].nunique()
+    out = pd.concat([disk.loc[:, list(DISK_COLUMNS)]] * int(revolutions), ignore_index=True)
+    n_r = len(disk) // n_psi
+    out["psi_rad"] = np.repeat(2.0 * np.pi * np.arange(n_psi * revolutions) / n_psi, n_r)
+    return out
+
+
+def split_period_harmonics(values: np.ndarray, revolutions: int, highest: int = 1) -> tuple[np.ndarray, np.ndarray]:
+    """(low, high) of a field (m N, n_r) over ``revolutions`` = m turns: ``low`` (N, n_r) the once-per-
+    revolution harmonics 0…``highest`` (the period's harmonics h = m n, n ≤ ``highest``), ``high``
+    (m N, n_r) all the rest (higher harmonics and the rev-to-rev variation, h not a multiple of m)."""
+    if revolutions == 1:
+        high = remove_low_harmonics(values, highest)
+        return values - high, high
+    n_rev = values.shape[0] // revolutions
+    spectrum = np.fft.rfft(values, axis=0)
+    keep = np.zeros(spectrum.shape[0], dtype=bool)
+    keep[: revolutions * highest + 1: revolutions] = True
+    low = np.fft.irfft(np.where(keep[:, None], spectrum, 0.0), n=values.shape[0], axis=0)
+    return low[:n_rev].copy(), values - low
 
 
 def summary_value(summary: pd.DataFrame, quantity: str, what: str = "loads summary") -> float:
@@ -294,6 +331,44 @@ def _frozen_filter(spectrum, half_chord_time, log_inv_beta_sq, weight, table):
     return out / n_psi
 
 
+@kernel(parallel=True)
+def _frozen_filter_period(spectrum, half_chord_time, log_inv_beta_sq, weight, table, revolutions):
+    """:func:`_frozen_filter` of a series over m = ``revolutions`` turns (n_psi = m N samples) whose
+    coefficients repeat every turn (``half_chord_time``, ``log_inv_beta_sq``: (N, n_r), harmonic n at n/m per
+    turn): at ψ_{r+jN} the phase e^{2πi n(r+jN)/(mN)} = e^{2πi n r/(mN)} e^{2πi (n mod m) j/m}, so per r the
+    harmonics are summed into m classes of n mod m, then a length-m sum gives the m samples (O(N n_h + N m²)
+    instead of O(m N n_h))."""
+    n_h, n_r, n_f = spectrum.shape
+    n_rev = half_chord_time.shape[0]
+    m = revolutions
+    n_psi = n_rev * m
+    log_n = np.log(np.maximum(np.arange(n_h), 1.0))
+    out = np.zeros((n_psi, n_r, n_f))
+    for j in prange(n_r):
+        bucket = np.zeros((m, n_f), dtype=np.complex128)
+        for r in range(n_rev):
+            bucket[:, :] = 0.0
+            h = half_chord_time[r, j]
+            log_h, lib = math.log(h), log_inv_beta_sq[r, j]
+            for f in range(n_f):
+                bucket[0, f] += weight[0] * spectrum[0, j, f]
+            for n in range(1, n_h):
+                s_re, s_im = _sears_scaled(log_n[n] + log_h, lib, table)
+                angle = 2.0 * math.pi * ((r * n) % n_psi) / n_psi - 0.5 * n * h
+                c, sn = math.cos(angle), math.sin(angle)
+                gain = complex((s_re * c - s_im * sn) * weight[n], (s_re * sn + s_im * c) * weight[n])
+                for f in range(n_f):
+                    bucket[n % m, f] += gain * spectrum[n, j, f]
+            for jj in range(m):
+                for cls in range(m):
+                    angle = 2.0 * math.pi * ((cls * jj) % m) / m
+                    c, sn = math.cos(angle), math.sin(angle)
+                    for f in range(n_f):
+                        x = bucket[cls, f]
+                        out[r + jj * n_rev, j, f] += x.real * c - x.imag * sn
+    return out / n_psi
+
+
 def unsteady_response(
     values: np.ndarray,
     ut_mps: np.ndarray,
@@ -301,6 +376,7 @@ def unsteady_response(
     radius_m: float,
     chord_m: float,
     speed_of_sound_mps: float | None = None,
+    revolutions: int = 1,
 ) -> np.ndarray:
     """Gust-response-filtered periodic disk field(s) of lifting-line increments (module doc).
 
@@ -309,6 +385,8 @@ def unsteady_response(
     (ψ, r) has k = n Ω c / (2 max(U_T, f ΩR)), f = ``UT_FLOOR_FRACTION``, and is multiplied
     by :func:`gust_transfer` (frozen coefficients). ``speed_of_sound_mps``: compressible
     magnitude with M = U_T / c0 (capped at ``MACH_CAP``); None: incompressible Sears.
+    ``revolutions``: the series spans m turns (a common period), harmonic n is at n/m per revolution
+    (U_T repeating every turn: :func:`_frozen_filter_period`).
     """
     values = np.asarray(values, dtype=float)
     n_psi, n_r = values.shape[:2]
@@ -323,12 +401,20 @@ def unsteady_response(
     if n_psi % 2 == 0:
         weight[-1] = 1.0
     speed = np.maximum(ut, UT_FLOOR_FRACTION * omega_rad_s * radius_m)
-    half_chord_time = np.ascontiguousarray(0.5 * chord_m * omega_rad_s / speed)  # k per harmonic number
+    half_chord_time = 0.5 * chord_m * omega_rad_s / speed  # k per harmonic number
+    if revolutions != 1:
+        half_chord_time = half_chord_time / revolutions
+    half_chord_time = np.ascontiguousarray(half_chord_time)
     if speed_of_sound_mps is None:
         log_inv_beta_sq = np.zeros((n_psi, n_r))
     else:
         log_inv_beta_sq = np.ascontiguousarray(-np.log(1.0 - np.minimum(speed / speed_of_sound_mps, MACH_CAP) ** 2))
-    out = _frozen_filter(np.ascontiguousarray(spectrum), half_chord_time, log_inv_beta_sq, weight, _sears_table())
+    n_rev = n_psi // revolutions
+    if revolutions > 1 and n_rev * revolutions == n_psi and np.array_equal(ut, np.tile(ut[:n_rev], (revolutions, 1))):
+        out = _frozen_filter_period(np.ascontiguousarray(spectrum), np.ascontiguousarray(half_chord_time[:n_rev]),
+                                    np.ascontiguousarray(log_inv_beta_sq[:n_rev]), weight, _sears_table(), int(revolutions))
+    else:
+        out = _frozen_filter(np.ascontiguousarray(spectrum), half_chord_time, log_inv_beta_sq, weight, _sears_table())
     return out.reshape(values.shape)
 
 
@@ -376,17 +462,19 @@ def loads_with_increments(
     velocity_hp: np.ndarray,
     model: BVIModel = BVIModel(),
 ) -> BVIResult:
-    """The disk table with lifting-line increments (ΔU_T, ΔU_P) (n_psi, n_r) in m/s added:
+    """The disk table (one revolution, or m of a common period: :func:`tile_disk`) with lifting-line
+    increments (ΔU_T, ΔU_P) (n_psi, n_r) in m/s added:
     gust response (``model.unsteady``, with the disk's U_T) and section loads recomputed with the
     disk's θ (no re-trim). ``velocity_hp`` is only carried into the result."""
     from nps.rotor import bet  # the loads stage; imported here so the wake can be used on its own
 
-    grid = disk_grid(disk)
+    grid = disk_grid(disk, common_period=True)
     if model.unsteady:
         ut0 = disk["ut_mps"].to_numpy(dtype=float).reshape(grid.shape)
         omega, radius = float(trim_row["omega_rad_s"]), float(trim_row["radius_m"])
         filtered = unsteady_response(
-            np.stack([d_ut, d_up], axis=-1), ut0, omega, radius, geometry.chord_m, float(trim_row["speed_of_sound_mps"])
+            np.stack([d_ut, d_up], axis=-1), ut0, omega, radius, geometry.chord_m, float(trim_row["speed_of_sound_mps"]),
+            grid.revolutions,
         )
         d_ut, d_up = filtered[..., 0], filtered[..., 1]
     ut = disk["ut_mps"].to_numpy(dtype=float) + d_ut.ravel()

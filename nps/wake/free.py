@@ -59,6 +59,7 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
+from nps.core import periods
 from nps.core.jit import kernel, prange
 from nps.wake import prescribed as wake
 from nps.wake.vortex import (POINT_VORTEX_PROFILE, VortexModel, add_polyline_velocity, core_radius, profile_row,
@@ -96,8 +97,11 @@ class FreeWakeModel:
     ``max_iterations``; ``far_group_deg`` and ``far_group_distance``: in the blade-load
     evaluation another rotor's vortex is summed in groups of this many degrees of wake age, a
     group farther than ``far_group_distance`` × its half-extent from the blade station counting
-    as its chord segment (0: every segment; docs "Far-field grouping"). Bounds as in the config
-    schema (``wake.free``).
+    as its chord segment (0: every segment; docs "Far-field grouping"). ``common_period``: rotors of
+    a coupled group turning at different speeds are relaxed over their common period
+    (:func:`nps.core.periods.common_period` with ``period_tolerance`` and ``max_period_revolutions``;
+    docs "Common period"); off: each rotor's wake is periodic in its own revolution. Bounds as in the
+    config schema (``wake.free``).
     """
 
     steps_per_rev: int = 36
@@ -111,6 +115,9 @@ class FreeWakeModel:
     max_iterations: int = 60
     far_group_deg: float = 8.0
     far_group_distance: float = 4.0
+    common_period: bool = False
+    period_tolerance: float = periods.DEFAULT_TOLERANCE
+    max_period_revolutions: int = periods.DEFAULT_MAX_REVOLUTIONS
 
     def __post_init__(self):
         checks = {
@@ -125,6 +132,8 @@ class FreeWakeModel:
             "max_iterations": self.max_iterations >= 1,
             "far_group_deg": 0.0 <= self.far_group_deg <= 90.0,
             "far_group_distance": self.far_group_distance >= 2.0,
+            "period_tolerance": 0.0 <= self.period_tolerance <= 0.05,
+            "max_period_revolutions": 1 <= self.max_period_revolutions <= 64,
         }
         bad = [name for name, ok in checks.items() if not ok]
         if bad:
@@ -203,7 +212,11 @@ class FreeWakeSolution:
     """Converged free wake: distortion (n_rotors, N, J+1, 3) from the Beddoes geometry (m, each
     rotor's H'), on ψ_i = iΔ, φ_j = jΔ; ``residual_history`` (iterations,) max |ΔX|/R (of the
     coupled group that needed the most iterations); ``groups``: the coupled groups of rotor
-    indices (:func:`coupled_groups`), each relaxed on its own (None: all rotors one group)."""
+    indices (:func:`coupled_groups`), each relaxed on its own (None: all rotors one group);
+    ``timing``: the common period of the groups relaxed over one (:class:`WakeTiming`; None: every
+    rotor periodic in its own revolution, the distortion (n_rotors, N, J+1, 3)). With a timing rotor q's
+    table holds m_q N rows (ψ of blade 0 over its m_q revolutions in the period), the array is padded
+    to the longest."""
 
     rotors: tuple[RotorPlacement, ...]
     beddoes: wake.WakeModel
@@ -212,6 +225,26 @@ class FreeWakeSolution:
     iterations: int
     residual_history: np.ndarray
     groups: tuple[tuple[int, ...], ...] | None = None
+    timing: "WakeTiming | None" = None
+
+    def revolutions(self, index: int) -> int:
+        """Own revolutions of rotor ``index`` in its tables (1 unless relaxed over a common period)."""
+        return 1 if self.timing is None else int(self.timing.revolutions[index])
+
+    def period_record(self, index: int, n_psi: int) -> dict:
+        """Metadata of rotor ``index``'s loads over a common period, for a disk table of ``n_psi`` azimuths per
+        revolution: {} when the rotor is periodic in its own revolution; else ``revolutions`` (m),
+        ``blade_shift_steps`` (blade k's loads are blade 0's table row i + shift_k at row i), ``period_s`` and
+        ``common_period`` (:meth:`nps.core.periods.CommonPeriod.describe`)."""
+        if self.revolutions(index) == 1:
+            return {}
+        rotor = self.rotors[index]
+        b = rotor.state.n_blades
+        period = next(p for p in self.timing.periods if rotor.name in p.names)
+        shifts = self.timing.blade_shift_rad[index, :b] * n_psi / (2.0 * math.pi)
+        return {"revolutions": self.revolutions(index), "blade_shift_steps": [int(round(x)) for x in shifts],
+                "period_s": period.period_s, "common_period": period.describe(),
+                "blade_shift_mismatch_passages": float(self.timing.shift_mismatch[index])}
 
     def group_of(self, index: int) -> tuple[int, ...]:
         """The coupled group (rotor indices, ascending) that rotor ``index`` belongs to."""
@@ -224,6 +257,64 @@ class FreeWakeSolution:
         if name not in names:
             raise ValueError(f"free wake: no rotor '{name}' (rotors {names})")
         return names.index(name)
+
+
+@dataclass(frozen=True)
+class WakeTiming:
+    """How the rotors' tables are timed over a common period (docs "Common period").
+
+    ``revolutions`` (n_rot,) m_q: own revolutions of rotor q in its table (N m_q rows);
+    ``speed_ratio`` (n_rot, n_rot): Ω_q/Ω_t = m_q/m_t used to place rotor q's blades when rotor t is the
+    target (the rational ratio of the period); ``blade_shift_rad`` (n_rot, max B): blade k of rotor q
+    at table azimuth ψ uses blade 0's row at ψ + shift (2π(k/B + n_k), n_k the own revolutions after
+    which the other rotors' blade passages repeat best); ``shift_mismatch`` (n_rot,): the largest
+    residual phase of another rotor's blade passage at those shifts, in passages (0: exact);
+    ``periods``: the :class:`nps.core.periods.CommonPeriod` of each group relaxed over one."""
+
+    revolutions: np.ndarray
+    speed_ratio: np.ndarray
+    blade_shift_rad: np.ndarray
+    shift_mismatch: np.ndarray
+    periods: tuple[periods.CommonPeriod, ...]
+
+
+def own_timing(rotors: Sequence[RotorPlacement]) -> WakeTiming:
+    """Each rotor periodic in its own revolution: m_q = 1, Ω_q/Ω_t the speed ratio, blade k at 2πk/B."""
+    omega = np.array([r.state.omega_rad_s for r in rotors])
+    max_b = max(r.state.n_blades for r in rotors)
+    shifts = np.zeros((len(rotors), max_b))
+    for q, r in enumerate(rotors):
+        b = r.state.n_blades
+        shifts[q, :b] = 2.0 * np.pi * np.arange(b) / b
+    return WakeTiming(np.ones(len(rotors), dtype=np.int64), np.ascontiguousarray([omega / omega[t] for t in range(len(rotors))]),
+                      shifts, np.zeros(len(rotors)), ())
+
+
+def period_timing(rotors: Sequence[RotorPlacement], model: FreeWakeModel) -> WakeTiming:
+    """Timing of one coupled group over its common period (:func:`nps.core.periods.common_period`, first
+    rotor the reference): m_q revolutions, rational speed ratios m_q/m_t, and for blade k of rotor q the
+    shift 2π(k/B_q + n) (n = 0…m_q−1) after which every other rotor p's blades are closest to a whole
+    number of its blade passages, (k/B_q + n)(m_p/m_q)B_p (exact for e.g. a 5:1 pair of four and two
+    blades; else the closest, recorded in ``shift_mismatch``). Raises :class:`nps.core.periods.PeriodError`."""
+    period = periods.common_period([r.name for r in rotors], [r.state.omega_rad_s for r in rotors],
+                                   model.period_tolerance, model.max_period_revolutions)
+    m = np.array(period.revolutions, dtype=np.int64)
+    blades = [r.state.n_blades for r in rotors]
+    shifts = np.zeros((len(rotors), max(blades)))
+    mismatch = np.zeros(len(rotors))
+    for q, b in enumerate(blades):
+        for k in range(b):
+            best = (math.inf, 0)
+            for n in range(int(m[q])):
+                own = k / b + n
+                miss = max([abs(x - round(x)) for x in (own * m[p] / m[q] * blades[p]
+                                                         for p in range(len(rotors)) if p != q)] or [0.0])
+                if miss < best[0] - 1e-12:
+                    best = (miss, n)
+            shifts[q, k] = 2.0 * np.pi * k / b + 2.0 * np.pi * best[1]
+            mismatch[q] = max(mismatch[q], best[0])
+    ratio = np.ascontiguousarray([m / float(m[t]) for t in range(len(rotors))])
+    return WakeTiming(m, ratio, shifts, mismatch, (period,))
 
 
 def far_field_ratio(source: RotorPlacement, target: RotorPlacement) -> float:
@@ -276,7 +367,10 @@ class _Sources:
     params: np.ndarray  # (n_rot, n_p) wake.wake_scalars
     gamma: np.ndarray  # (n_rot, n_tab)
     beta: np.ndarray  # (n_rot, n_tab)
-    distortion: np.ndarray  # (n_rot, N, J+1, 3)
+    distortion: np.ndarray  # (n_rot, max rows, J+1, 3), rotor q's first table_rows[q] rows
+    table_rows: np.ndarray  # (n_rot,) int: rows of each rotor's table (N m_q)
+    revolutions: np.ndarray  # (n_rot,) float: m_q, own revolutions the table spans
+    blade_shift: np.ndarray  # (n_rot, max B): WakeTiming.blade_shift_rad
     core: np.ndarray  # (n_rot, 3): VortexModel.core_constants (r_c0, growth coefficient, a1/ν)
     profiles: np.ndarray  # (n_rot, n_rows, M) VortexModel.structure_coefficients, zero-padded
     profile_rows: np.ndarray  # (n_rot,) int: each rotor's number of release azimuths in it
@@ -296,29 +390,35 @@ def _common_tables(rotors: Sequence[RotorPlacement]) -> tuple[np.ndarray, np.nda
     return np.ascontiguousarray([o[0] for o in out]), np.ascontiguousarray([o[1] for o in out])
 
 
-def _sources(rotors, beddoes: wake.WakeModel, distortion, vortex: VortexModel) -> _Sources:
-    """The rotors' Beddoes geometry (``beddoes``) and ``distortion`` carrying ``vortex``."""
+def _sources(rotors, beddoes: wake.WakeModel, distortion, vortex: VortexModel, timing: WakeTiming) -> _Sources:
+    """The rotors' Beddoes geometry (``beddoes``) and ``distortion`` (a list of each rotor's table
+    (N m_q, J+1, 3), or an array of equal tables) carrying ``vortex``, timed by ``timing``."""
     gamma, beta = _common_tables(rotors)
+    rows = np.array([len(d) for d in distortion], dtype=np.int64)
+    packed = np.zeros((len(rotors), int(rows.max())) + tuple(np.shape(distortion[0])[1:]))
+    for q, d in enumerate(distortion):
+        packed[q, : rows[q]] = d
     params = np.ascontiguousarray([wake.wake_scalars(r.state, beddoes) for r in rotors])
     core = np.array([vortex.core_constants(r.state.chord_m, r.state.omega_rad_s) for r in rotors])
     tables = [vortex.structure_coefficients(r.state.vortex_profile, r.state.radius_m, r.state.chord_m) for r in rotors]
     profiles = np.zeros((len(rotors), max(t[0].shape[0] for t in tables), max(t[0].shape[1] for t in tables)))
     for q, (table, _) in enumerate(tables):
         profiles[q, : table.shape[0], : table.shape[1]] = table
-    return _Sources(params, gamma, beta, np.ascontiguousarray(distortion, dtype=float), core, profiles,
+    return _Sources(params, gamma, beta, packed, rows, np.asarray(timing.revolutions, dtype=float),
+                    np.ascontiguousarray(timing.blade_shift_rad, dtype=float), core, profiles,
                     np.array([t[0].shape[0] for t in tables], dtype=np.int64), np.array([t[1] for t in tables]),
                     float(vortex.vatistas_n))
 
 
-def _physical_sources(rotors, beddoes, model: FreeWakeModel, distortion) -> _Sources:
+def _physical_sources(rotors, beddoes, model: FreeWakeModel, distortion, timing: WakeTiming) -> _Sources:
     """Node kinematics: :attr:`FreeWakeModel.kinematics_vortex` (point vortices, r_c0 = max(physical
     core, floor) · c, growing with age)."""
-    return _sources(rotors, beddoes, distortion, model.kinematics_vortex)
+    return _sources(rotors, beddoes, distortion, model.kinematics_vortex, timing)
 
 
-def _lifting_line_sources(rotors, beddoes: wake.WakeModel, distortion) -> _Sources:
+def _lifting_line_sources(rotors, beddoes: wake.WakeModel, distortion, timing: WakeTiming) -> _Sources:
     """Blade-load evaluation: the Beddoes model's lifting-line vortex (as the prescribed wake)."""
-    return _sources(rotors, beddoes, distortion, beddoes.vortex)
+    return _sources(rotors, beddoes, distortion, beddoes.vortex, timing)
 
 
 def _transforms(rotors: Sequence[RotorPlacement], target: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -341,11 +441,12 @@ def _transforms(rotors: Sequence[RotorPlacement], target: int) -> tuple[np.ndarr
 
 
 @kernel(inline=True)
-def _distortion_at(table, psi, phi, step):
-    """Bilinear interpolation of one rotor's distortion (N, J+1, 3): periodic in ψ, linear in φ
-    (clamped to the table's age range)."""
-    n, m = table.shape[0], table.shape[1]
-    u = (psi / (2.0 * math.pi)) % 1.0 * n
+def _distortion_at(table, n, revolutions, psi, phi, step):
+    """Bilinear interpolation of one rotor's distortion (first ``n`` rows of ``table``, spanning
+    ``revolutions`` turns of ψ, J+1 ages, 3): periodic in ψ over 2π·revolutions, linear in φ (clamped
+    to the table's age range)."""
+    m = table.shape[1]
+    u = (psi / (2.0 * math.pi * revolutions)) % 1.0 * n
     i0 = int(math.floor(u))
     wu = u - i0
     i0 = i0 % n
@@ -365,18 +466,21 @@ def _distortion_at(table, psi, phi, step):
 
 
 @kernel
-def _rotor_nodes(p, gamma_tab, beta_tab, table, table_step, core, psi0, n_age, dphi, n_rows, nodes, strength, radius,
-                 row):
-    """Nodes (B, n_age+1, 3) in the rotor's own H' when its blade 0 is at ``psi0``: Beddoes
-    geometry plus the interpolated distortion; Γ, core radius and structure-factor row (of
-    ``n_rows``, :func:`nps.wake.vortex.profile_row`) per node; ``core``: :meth:`VortexModel.core_constants`."""
+def _rotor_nodes(p, gamma_tab, beta_tab, table, table_rows, revolutions, shift, table_step, core, psi0, n_age, dphi,
+                 n_rows, nodes, strength, radius, row):
+    """Nodes (B, n_age+1, 3) in the rotor's own H' when its blade 0 is at table azimuth ``psi0``:
+    Beddoes geometry of blade k at ψ0 + 2πk/B plus the distortion of the table at ψ0 + ``shift[k]``
+    (``table_rows`` rows over ``revolutions`` turns, :class:`WakeTiming`); Γ, core radius and
+    structure-factor row (of ``n_rows``, :func:`nps.wake.vortex.profile_row`) per node; ``core``:
+    :meth:`VortexModel.core_constants`."""
     n_blades = int(p[1])
     for k in range(n_blades):
         psi_k = psi0 + 2.0 * math.pi * k / n_blades
+        psi_table = psi0 + shift[k]
         for j in range(n_age + 1):
             phi = j * dphi
             x, y, z, g = wake.node_position(p, gamma_tab, beta_tab, psi_k - phi, phi)
-            dx, dy, dz = _distortion_at(table, psi_k, phi, table_step)
+            dx, dy, dz = _distortion_at(table, table_rows, revolutions, psi_table, phi, table_step)
             nodes[k, j, 0], nodes[k, j, 1], nodes[k, j, 2] = x + dx, y + dy, z + dz
             strength[k, j] = g
             radius[k, j] = core_radius(core, g, phi)
@@ -475,12 +579,14 @@ def _add_grouped(px, py, pz, nodes, strength, radius, row, groups, profiles, s2,
 
 
 @kernel(parallel=True)
-def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortion, table_step, core, profiles,
-                    profile_rows, profile_s2, rot, off, sign, bound, far, group, ratio, n_age, dphi, vatistas_n):
+def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortion, table_rows, revolutions, shifts,
+                    table_step, core, profiles, profile_rows, profile_s2, rot, off, sign, bound, far, group, ratio, n_age,
+                    dphi, vatistas_n):
     """Velocity (n_tgt, n_src, n_rows, n_pts, 3) induced at ``points`` (n_tgt, n_rows, n_pts, 3)
     by every source rotor's tip vortices, in each target rotor's H'. Row i of target t is the
     instant when the target's blade 0 is at ``row_psi[i]``; source q's blade 0 is then at
-    omega_ratio[t, q]·row_psi[i]. rot (n_tgt, n_src, 3, 3), off (n_tgt, n_src, 3), sign
+    omega_ratio[t, q]·row_psi[i]; ``distortion``, ``table_rows``, ``revolutions``, ``shifts``: the
+    sources' tables and timing (:class:`_Sources`). rot (n_tgt, n_src, 3, 3), off (n_tgt, n_src, 3), sign
     (n_tgt, n_src) map source H' to target H' (:func:`_transforms`); ``bound[t, q]``: add the
     blades' bound vortices, straight from the hub centre to the tip node (strength Γ_v, core
     r_c0), closing each tip vortex into a horseshoe. ``far[t, q]``: far-field grouping of
@@ -510,8 +616,9 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
         near = np.empty(n_pts, dtype=np.int64)
         for q in range(n_src):
             n_blades = int(params[q, 1])
-            _rotor_nodes(params[q], gamma[q], beta[q], distortion[q], table_step, core[q],
-                         omega_ratio[t, q] * row_psi[i], n_age, dphi, profile_rows[q], nodes, strength, radius, row)
+            _rotor_nodes(params[q], gamma[q], beta[q], distortion[q], table_rows[q], revolutions[q], shifts[q], table_step,
+                         core[q], omega_ratio[t, q] * row_psi[i], n_age, dphi, profile_rows[q], nodes, strength, radius,
+                         row)
             _to_target(nodes, n_blades, n_age, rot[t, q], off[t, q])
             q_profiles, s2 = profiles[q], profile_s2[q]
             g_sign = sign[t, q]
@@ -536,33 +643,36 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
     return out
 
 
-def _induced(rotors, sources: _Sources, targets, points, row_psi, n_age: int, dphi: float, table_step: float,
-             own_bound: bool, far_group: int = 1, far_distance: float = 0.0) -> np.ndarray:
+def _induced(rotors, sources: _Sources, timing: WakeTiming, targets, points, row_psi, n_age: int, dphi: float,
+             table_step: float, own_bound: bool, far_group: int = 1, far_distance: float = 0.0) -> np.ndarray:
     """Per-source induced velocity (n_tgt, n_src, n_rows, n_pts, 3) in each target's H' (m/s)
     at ``points`` (n_tgt, n_rows, n_pts, 3); ``targets``: rotor indices; bound vortices of the
     other rotors always, of the target itself when ``own_bound``; the other rotors' vortices
-    with the far-field grouping of ``far_group`` segments beyond ``far_distance`` half-extents (1: none)."""
+    with the far-field grouping of ``far_group`` segments beyond ``far_distance`` half-extents (1: none);
+    source blades placed by ``timing.speed_ratio`` (rows: targets)."""
     maps = [_transforms(rotors, t) for t in targets]
     rot = np.ascontiguousarray([m[0] for m in maps])
     off = np.ascontiguousarray([m[1] for m in maps])
     sign = np.ascontiguousarray([m[2] for m in maps])
-    omega = np.array([r.state.omega_rad_s for r in rotors])
-    ratio = np.ascontiguousarray([omega / omega[t] for t in targets])
+    ratio = np.ascontiguousarray(timing.speed_ratio[list(targets)])
     bound = np.ascontiguousarray([[own_bound or q != t for q in range(len(rotors))] for t in targets], dtype=np.bool_)
     far = np.ascontiguousarray([[q != t for q in range(len(rotors))] for t in targets], dtype=np.bool_)
     return _induced_kernel(np.ascontiguousarray(points, dtype=float), np.ascontiguousarray(row_psi, dtype=float), ratio,
-                           sources.params, sources.gamma, sources.beta, sources.distortion, float(table_step),
+                           sources.params, sources.gamma, sources.beta, sources.distortion, sources.table_rows,
+                           sources.revolutions, sources.blade_shift, float(table_step),
                            np.ascontiguousarray(sources.core), sources.profiles, sources.profile_rows,
                            sources.profile_s2, rot, off, sign, bound, far, max(int(far_group), 1),
                            float(far_distance), int(n_age), float(dphi), sources.vatistas_n)
 
 
-def _node_table(rotor: RotorPlacement, beddoes: wake.WakeModel, model: FreeWakeModel) -> np.ndarray:
-    """Beddoes nodes of blade 0 on the relaxation grid (N, J+1, 3), H' (m)."""
+def _node_table(rotor: RotorPlacement, beddoes: wake.WakeModel, model: FreeWakeModel, revolutions: int = 1) -> np.ndarray:
+    """Beddoes nodes of blade 0 on the relaxation grid (N·revolutions, J+1, 3), H' (m): the Beddoes
+    geometry is periodic in one revolution, so it repeats."""
     p = wake.wake_scalars(rotor.state, beddoes)
     gamma = np.ascontiguousarray(rotor.state.gamma_table_m2_s, dtype=float)
     beta = np.ascontiguousarray(rotor.state.beta_table_rad, dtype=float)
-    return _beddoes_table(p, gamma, beta, model.steps_per_rev, model.n_age + model.n_far, model.step_rad)
+    one = _beddoes_table(p, gamma, beta, model.steps_per_rev, model.n_age + model.n_far, model.step_rad)
+    return one if revolutions == 1 else np.tile(one, (int(revolutions), 1, 1))
 
 
 @kernel
@@ -575,16 +685,19 @@ def _beddoes_table(p, gamma, beta, n_psi, n_age, step):
     return out
 
 
-def _node_velocities(rotors, beddoes, model, base, distortion) -> list[np.ndarray]:
-    """Velocity (N, J+1, 3) of every rotor's free nodes in its own H' (m/s): free stream +
-    all wakes (free and far parts and the semi-infinite continuation)."""
-    sources = _physical_sources(rotors, beddoes, model, distortion)
-    psi = np.arange(model.steps_per_rev) * model.step_rad
+def _node_velocities(rotors, beddoes, model, base, distortion, timing: WakeTiming) -> list[np.ndarray]:
+    """Velocity (N m_q, J+1, 3) of every rotor's free nodes in its own H' (m/s): free stream +
+    all wakes (free and far parts and the semi-infinite continuation). ``base``, ``distortion``: each
+    rotor's table (lists); row i of rotor q is the instant its blade 0 is at ψ_i = iΔ."""
+    sources = _physical_sources(rotors, beddoes, model, distortion, timing)
     free = model.n_age + 1
-    points = base[:, :, :free] + distortion[:, :, :free]
-    v = _induced(rotors, sources, range(len(rotors)), points, psi,
-                 model.n_age + model.n_far, model.step_rad, model.step_rad, True).sum(axis=1)
-    out = [v[q] + r.free_stream_hp_mps for q, r in enumerate(rotors)]
+    points = [base[q][:, :free] + distortion[q][:, :free] for q in range(len(rotors))]
+    out = []
+    for t, r in enumerate(rotors):
+        psi = np.arange(len(points[t])) * model.step_rad
+        v = _induced(rotors, sources, timing, [t], points[t][None], psi, model.n_age + model.n_far, model.step_rad,
+                     model.step_rad, True).sum(axis=1)[0]
+        out.append(v + r.free_stream_hp_mps)
     rings = [_continuation_rings(r, base[q] + distortion[q], sources.gamma[q], sources.core[q, 0], model)
              for q, r in enumerate(rotors)]
     if any(ring is not None for ring in rings):
@@ -736,7 +849,9 @@ def relax(rotors: Sequence[RotorPlacement], beddoes: wake.WakeModel, model: Free
 
     Raises :class:`FreeWakeError` naming the rotor, the iteration and the residual when a node
     becomes non-finite, the residual exceeds one radius (divergence) or ``max_iterations`` pass
-    without max |ΔX| < ``tolerance_radius_fraction`` · R for every rotor of a group.
+    without max |ΔX| < ``tolerance_radius_fraction`` · R for every rotor of a group;
+    :class:`nps.core.periods.PeriodError` (before any relaxation) when ``model.common_period`` finds no
+    common period of a group's speeds.
     """
     rotors = tuple(rotors)
     if not rotors:
@@ -745,36 +860,73 @@ def relax(rotors: Sequence[RotorPlacement], beddoes: wake.WakeModel, model: Free
     if len(set(names)) != len(names):
         raise ValueError(f"free wake: rotor names must be unique, got {names}")
     groups = coupled_groups(rotors)
-    distortion = np.zeros((len(rotors), model.steps_per_rev, model.n_age + model.n_far + 1, 3))
+    # every group's common period found (or refused, PeriodError) before the first relaxation
+    periodic = {group: period_timing([rotors[i] for i in group], model) for group in groups
+                if model.common_period and len({rotors[i].state.omega_rad_s for i in group}) > 1}
+    parts: list[np.ndarray | None] = [None] * len(rotors)
+    timed = []  # (group, timing) of the groups relaxed over a common period
     slowest = (0, np.zeros(0))
     for group in groups:
-        part, iterations, history = _relax_group([rotors[i] for i in group], beddoes, model)
-        distortion[list(group)] = part
+        members = [rotors[i] for i in group]
+        own = own_timing(members)
+        part, iterations, history = _relax_group(members, beddoes, model, own)
+        if group in periodic:
+            timing = periodic[group]  # from the own-period wake, repeated over the period
+            start = [np.tile(d, (int(m), 1, 1)) for d, m in zip(part, timing.revolutions)]
+            part, more, history = _relax_group(members, beddoes, model, timing, start)
+            iterations += more
+            timed.append((group, timing))
+        for i, d in zip(group, part):
+            parts[i] = d
         if iterations > slowest[0]:
             slowest = (iterations, history)
-    return FreeWakeSolution(rotors, beddoes, model, distortion, slowest[0], slowest[1], groups)
+    timing = _solution_timing(rotors, timed)
+    distortion = np.zeros((len(rotors), max(len(d) for d in parts)) + parts[0].shape[1:])
+    for q, d in enumerate(parts):
+        distortion[q, : len(d)] = d
+    return FreeWakeSolution(rotors, beddoes, model, distortion, slowest[0], slowest[1], groups, timing)
 
 
-def _relax_group(rotors, beddoes, model) -> tuple[np.ndarray, int, np.ndarray]:
-    """Relaxation of coupled rotors: (distortion (n, N, J+J_far+1, 3), iterations, residual history)."""
+def _solution_timing(rotors, timed) -> WakeTiming | None:
+    """The timing of all rotors from their own-period timing and the groups relaxed over a common
+    period (None when there are none)."""
+    if not timed:
+        return None
+    out = own_timing(rotors)
+    shifts = np.zeros((len(rotors), max(out.blade_shift_rad.shape[1], *(t.blade_shift_rad.shape[1] for _, t in timed))))
+    shifts[:, : out.blade_shift_rad.shape[1]] = out.blade_shift_rad
+    revolutions, ratio, mismatch = out.revolutions.copy(), out.speed_ratio.copy(), out.shift_mismatch.copy()
+    for group, timing in timed:
+        index = np.array(group)
+        revolutions[index] = timing.revolutions
+        ratio[np.ix_(index, index)] = timing.speed_ratio
+        shifts[index, : timing.blade_shift_rad.shape[1]] = timing.blade_shift_rad
+        mismatch[index] = timing.shift_mismatch
+    return WakeTiming(revolutions, ratio, shifts, mismatch, tuple(t.periods[0] for _, t in timed))
+
+
+def _relax_group(rotors, beddoes, model, timing: WakeTiming, start=None) -> tuple[list[np.ndarray], int, np.ndarray]:
+    """Relaxation of coupled rotors timed by ``timing``, from the distortion ``start`` (None: zero, the
+    Beddoes wake): (distortion of each rotor (N m_q, J+J_far+1, 3), iterations, residual history)."""
     names = [r.name for r in rotors]
-    base = np.stack([_node_table(r, beddoes, model) for r in rotors])
-    distortion = np.zeros_like(base)
+    base = [_node_table(r, beddoes, model, int(m)) for r, m in zip(rotors, timing.revolutions)]
+    distortion = [np.zeros_like(b) for b in base] if start is None else list(start)
     radius = np.array([r.state.radius_m for r in rotors])
     dt = np.array([model.step_rad / r.state.omega_rad_s for r in rotors])
     history = []
+    n = len(rotors)
     for iteration in range(1, model.max_iterations + 1):
-        x_old = base + distortion
-        v_old = _node_velocities(rotors, beddoes, model, base, distortion)
-        predicted = np.stack([_march(x_old[q], v_old[q], dt[q]) for q in range(len(rotors))])
+        x_old = [base[q] + distortion[q] for q in range(n)]
+        v_old = _node_velocities(rotors, beddoes, model, base, distortion, timing)
+        predicted = [_march(x_old[q], v_old[q], dt[q]) for q in range(n)]
         _check_finite(rotors, predicted, iteration, "predictor")
-        v_pred = _node_velocities(rotors, beddoes, model, base, predicted - base)
-        corrected = np.stack([_march(x_old[q], 0.5 * (v_old[q] + v_pred[q]), dt[q]) for q in range(len(rotors))])
-        x_new = x_old + model.relaxation * (corrected - x_old)
+        v_pred = _node_velocities(rotors, beddoes, model, base, [predicted[q] - base[q] for q in range(n)], timing)
+        corrected = [_march(x_old[q], 0.5 * (v_old[q] + v_pred[q]), dt[q]) for q in range(n)]
+        x_new = [x_old[q] + model.relaxation * (corrected[q] - x_old[q]) for q in range(n)]
         _check_finite(rotors, x_new, iteration, "corrector")
-        change = np.array([np.abs(x_new[q] - x_old[q]).max() / radius[q] for q in range(len(rotors))])
+        change = np.array([np.abs(x_new[q] - x_old[q]).max() / radius[q] for q in range(n)])
         history.append(float(change.max()))
-        distortion = x_new - base
+        distortion = [x_new[q] - base[q] for q in range(n)]
         worst = int(np.argmax(change))
         if change[worst] > 1.0:
             raise FreeWakeError(f"free wake diverged: rotor '{names[worst]}', iteration {iteration}, "
@@ -798,7 +950,8 @@ def disk_induced_velocity(solution: FreeWakeSolution, target: str, psi_rad, r_m,
     stations by each rotor's free wake (index = ``solution.rotors`` order; zero for rotors
     outside the target's coupled group).
 
-    ``psi_rad`` (n_psi,) target blade-0 azimuths, ``r_m`` (n_r,), ``beta_rad`` broadcastable to
+    ``psi_rad`` (n_psi,) target blade-0 azimuths (over the target's m revolutions of a common period:
+    ψ in [0, 2πm), :meth:`FreeWakeSolution.revolutions`), ``r_m`` (n_r,), ``beta_rad`` broadcastable to
     (n_psi, n_r). Segments 2π/``beddoes.steps_per_rev`` long, lifting-line core of the
     Beddoes model; with a zero distortion the target's own term equals
     :func:`nps.wake.prescribed.disk_induced_velocity`.
@@ -808,13 +961,31 @@ def disk_induced_velocity(solution: FreeWakeSolution, target: str, psi_rad, r_m,
     psi = np.ascontiguousarray(psi_rad, dtype=float)
     points = wake.blade_points(psi, r_m, beta_rad)
     rotors = [solution.rotors[i] for i in group]
-    sources = _lifting_line_sources(rotors, solution.beddoes, solution.distortion_m[group])
+    timing = _group_timing(solution, group)
+    sources = _lifting_line_sources(rotors, solution.beddoes, _tables(solution, group), timing)
     model = solution.model
     n_group = int(round(math.radians(model.far_group_deg) / solution.beddoes.dphi_rad))
     out = np.zeros((len(solution.rotors),) + points.shape)
-    out[group] = _induced(rotors, sources, [group.index(t)], points[None], psi, solution.beddoes.n_age,
+    out[group] = _induced(rotors, sources, timing, [group.index(t)], points[None], psi, solution.beddoes.n_age,
                           solution.beddoes.dphi_rad, model.step_rad, False, n_group, model.far_group_distance)[0]
     return out
+
+
+def _tables(solution: FreeWakeSolution, indices) -> list[np.ndarray]:
+    """The distortion tables of rotors ``indices`` (each its own N m_q rows)."""
+    n = solution.model.steps_per_rev
+    return [solution.distortion_m[i, : n * solution.revolutions(i)] for i in indices]
+
+
+def _group_timing(solution: FreeWakeSolution, indices) -> WakeTiming:
+    """The timing of the rotors ``indices`` (own periods unless the solution has a common period)."""
+    rotors = [solution.rotors[i] for i in indices]
+    if solution.timing is None:
+        return own_timing(rotors)
+    t, index = solution.timing, np.array(indices)
+    width = max(r.state.n_blades for r in rotors)
+    return WakeTiming(t.revolutions[index], np.ascontiguousarray(t.speed_ratio[np.ix_(index, index)]),
+                      np.ascontiguousarray(t.blade_shift_rad[index, :width]), t.shift_mismatch[index], t.periods)
 
 
 def snapshot_nodes(solution: FreeWakeSolution, rotor: str, psi_blade_rad: float) -> np.ndarray:
@@ -834,12 +1005,15 @@ def wake_snapshot(solution: FreeWakeSolution, rotor: str, psi_blade_rad: float) 
 
 def _snapshot(solution, rotor, psi_blade_rad, n_age, step):
     q = solution.index(rotor)
-    sources = _physical_sources(solution.rotors, solution.beddoes, solution.model, solution.distortion_m)
+    indices = list(range(len(solution.rotors)))
+    sources = _physical_sources(solution.rotors, solution.beddoes, solution.model, _tables(solution, indices),
+                                _group_timing(solution, indices))
     n_b = solution.rotors[q].state.n_blades
     nodes = np.empty((n_b, n_age + 1, 3))
     strength = np.empty((n_b, n_age + 1))
     radius = np.empty((n_b, n_age + 1))
     row = np.empty((n_b, n_age + 1), dtype=np.int64)
-    _rotor_nodes(sources.params[q], sources.gamma[q], sources.beta[q], sources.distortion[q], solution.model.step_rad,
-                 sources.core[q], float(psi_blade_rad), n_age, step, 1, nodes, strength, radius, row)
+    _rotor_nodes(sources.params[q], sources.gamma[q], sources.beta[q], sources.distortion[q], sources.table_rows[q],
+                 sources.revolutions[q], sources.blade_shift[q], solution.model.step_rad, sources.core[q],
+                 float(psi_blade_rad), n_age, step, 1, nodes, strength, radius, row)
     return nodes, strength, radius

@@ -26,6 +26,12 @@ No double counting (docs/reference/wake_bvi.md, "Rotor–rotor interaction"):
   tip-vortex strength (the local vortex, as for the Beddoes wake);
 - the ≥ 2/rev part of all wakes is the BVI increment (gust response as in :mod:`nps.wake.bvi`).
 
+Over a common period (``FreeWakeModel.common_period``, docs "Common period") a rotor's loads table is
+repeated over its m turns (:func:`nps.wake.bvi.tile_disk`), the wakes' velocity found at blade 0 over the
+period and split by :func:`nps.wake.bvi.split_period_harmonics`: the per-turn mean and 1/rev as above (the
+re-trim on one turn), everything else (≥ 2/rev and the rev-to-rev variation) as the BVI increment; the
+result holds the m turns.
+
 One coupling pass: the wakes are relaxed with the strengths of the loads tables; the
 re-trimmed circulation is not fed back into the wake. A rotor alone in its coupled group
 (:func:`nps.wake.free.coupled_groups`: a single-rotor aircraft, or rotors too far apart to
@@ -125,29 +131,22 @@ def aircraft_bvi_loads(
         disk = disks[name]
         geometry = RotorGeometry.from_config(rotor_configs[name])
         row = trim_row(trim, name)
-        grid = bvi.disk_grid(disk, f"{name} loads")
-        beta = disk["beta_rad"].to_numpy(dtype=float).reshape(grid.shape)
+        m = solution.revolutions(p)
+        grid = bvi.disk_grid(bvi.tile_disk(disk, m), f"{name} loads", common_period=True)
+        n_psi = grid.shape[0] // m
+        beta = np.tile(disk["beta_rad"].to_numpy(dtype=float).reshape(n_psi, -1), (m, 1))
         v = freewake.disk_induced_velocity(solution, name, grid.psi_rad, grid.r_m, beta)
-        high_ut, high_up = np.zeros(grid.shape), np.zeros(grid.shape)
-        low_ut, low_up = np.zeros(grid.shape), np.zeros(grid.shape)
-        parts = []
-        for q in range(len(rotors)):
-            d_ut, d_up = bvi.blade_frame_increments(v[q], grid.psi_rad, beta)
-            h_ut, h_up = bvi.remove_low_harmonics(d_ut, 1), bvi.remove_low_harmonics(d_up, 1)
-            high_ut += h_ut
-            high_up += h_up
-            if q != p:
-                low_ut += momentum[q] * (d_ut - h_ut)
-                low_up += momentum[q] * (d_up - h_up)
-            parts.append(((momentum[q] if q != p else 1.0) * (d_up - h_up), h_up))
+        high_ut, high_up, low_ut, low_up, parts = _split_by_source(v, p, grid.psi_rad, beta, m, momentum)
         if coupled[name]:
-            v_alone = freewake.disk_induced_velocity(alone[name], name, grid.psi_rad, grid.r_m, beta)[0]
+            # the isolated wake repeats every turn: one turn evaluated, repeated over the period
+            v_alone = np.tile(freewake.disk_induced_velocity(alone[name], name, grid.psi_rad[:n_psi], grid.r_m,
+                                                             beta[:n_psi])[0], (m, 1, 1))
             a_ut, a_up = bvi.blade_frame_increments(v[p] - v_alone, grid.psi_rad, beta)
-            low_ut += momentum[p] * (a_ut - bvi.remove_low_harmonics(a_ut, 1))
-            low_up += momentum[p] * (a_up - bvi.remove_low_harmonics(a_up, 1))
-        n_psi = grid.shape[0]
+            low_ut += momentum[p] * bvi.split_period_harmonics(a_ut, m)[0]
+            low_up += momentum[p] * bvi.split_period_harmonics(a_up, m)[0]
         target = float(row["thrust_N"])
-        probe = bvi.loads_with_increments(disk, row, geometry, low_ut, low_up, v.sum(axis=0), bvi.BVIModel(unsteady=False))
+        probe = bvi.loads_with_increments(disk, row, geometry, low_ut, low_up, v.sum(axis=0)[:n_psi],
+                                          bvi.BVIModel(unsteady=False))
         change = _disk_thrust(probe.disk, geometry.n_blades, n_psi) / target - 1.0
         retrim = None
         mode = "collective" if controls is None else controls.get(name, "collective")
@@ -156,15 +155,35 @@ def aircraft_bvi_loads(
                              f"thrust by {100.0 * change:.3g} %, and its speed cannot be re-trimmed (the other stages "
                              "read the set-up's speed): use control 'collective' or 'fixed' for a coupled rotor")
         if abs(change) > TRIM_TOLERANCE and coupled[name] and mode != "fixed":
-            retrim = bet.trim_rotor(geometry, OperatingPoint.from_trim_row(row), bet.DiskGrid(grid.shape[0], grid.shape[1]),
+            retrim = bet.trim_rotor(geometry, OperatingPoint.from_trim_row(row), bet.DiskGrid(n_psi, grid.shape[1]),
                                     tol_rel=TRIM_TOLERANCE, interference=(low_ut, low_up))
-            result = bvi.loads_with_increments(retrim.disk, row, geometry, high_ut, high_up, v.sum(axis=0), bvi_model)
+            result = bvi.loads_with_increments(bvi.tile_disk(retrim.disk, m), row, geometry, high_ut, high_up,
+                                               v.sum(axis=0), bvi_model)
         else:
-            result = bvi.loads_with_increments(disk, row, geometry, high_ut + low_ut, high_up + low_up, v.sum(axis=0),
-                                               bvi_model)
+            result = bvi.loads_with_increments(bvi.tile_disk(disk, m), row, geometry, high_ut + np.tile(low_ut, (m, 1)),
+                                               high_up + np.tile(low_up, (m, 1)), v.sum(axis=0), bvi_model)
         results[name], retrims[name] = result, retrim
         rows.extend(_summary_rows(name, [r.name for r in rotors], p, parts, retrim is not None, change))
     return AircraftBVI(solution, results, retrims, pd.DataFrame(rows, columns=list(SUMMARY_COLUMNS)))
+
+
+def _split_by_source(v, p, psi_rad, beta, m, momentum):
+    """Blade-frame increments of every source rotor's wake at rotor ``p`` over its m turns: (ΔU_T, ΔU_P) of
+    the BVI part (≥ 2/rev and rev-to-rev, all sources; (mN, n_r)), of the other rotors' per-turn mean and
+    1/rev scaled by ``momentum`` ((N, n_r)), and per source (per-turn 0/1-rev ΔU_P, BVI ΔU_P) for the summary."""
+    high_ut, high_up = np.zeros(v.shape[1:3]), np.zeros(v.shape[1:3])
+    low_ut, low_up = np.zeros((v.shape[1] // m, v.shape[2])), np.zeros((v.shape[1] // m, v.shape[2]))
+    parts = []
+    for q in range(v.shape[0]):
+        d_ut, d_up = bvi.blade_frame_increments(v[q], psi_rad, beta)
+        (l_ut, h_ut), (l_up, h_up) = bvi.split_period_harmonics(d_ut, m), bvi.split_period_harmonics(d_up, m)
+        high_ut += h_ut
+        high_up += h_up
+        if q != p:
+            low_ut += momentum[q] * l_ut
+            low_up += momentum[q] * l_up
+        parts.append(((momentum[q] if q != p else 1.0) * l_up, h_up))
+    return high_ut, high_up, low_ut, low_up, parts
 
 
 def _summary_rows(name, sources, p, parts, retrimmed, change) -> list[dict]:

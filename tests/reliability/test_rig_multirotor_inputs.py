@@ -100,3 +100,19 @@ def test_bad_multirotor_rig_through_the_command(tmp_path, case, edit, expected):
 def test_the_bundled_rig_is_valid():
     rig = load_rig(REPO / "config" / "rigs" / "main_tail_rig.yaml")
     assert [r["control"] for r in rig["rotor_configs"]] == ["collective", "fixed"]
+
+
+def test_speeds_without_a_common_period_are_refused(tmp_path):
+    """wake.free.common_period with a tail rotor at 5.02x and a 0.1 % tolerance: no fraction within 16 turns of
+    the main rotor; refused at load (before any computation) naming the file, the field and the best fraction."""
+    def tail_at(tolerance):
+        def edit(rig):
+            rig["rotors"][1]["omega_rad_s"] = 502.0
+            rig["wake"]["free"]["period_tolerance"] = tolerance
+        return edit
+
+    with pytest.raises(ConfigError, match=r"bad_rig.yaml: wake.free.common_period: no common period of the "
+                                          r"rotors \('main' 100 rad/s, 'tail' 502 rad/s\) within 16 revolutions"):
+        load_rig(_write(tmp_path / "strict", tail_at(0.001)))
+    # 5:1 within 0.4 %: accepted (an approximated period)
+    assert load_rig(_write(tmp_path / "loose", tail_at(0.005)))["name"] == "bad_rig"

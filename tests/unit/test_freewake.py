@@ -78,8 +78,8 @@ def test_non_finite_nodes_are_caught(rotor, monkeypatch):
     """A non-finite velocity anywhere stops the relaxation with the rotor named."""
     _, placement = rotor
 
-    def broken(rotors, beddoes, model, base, distortion):
-        v = np.zeros((base.shape[1], model.n_age + 1, 3))
+    def broken(rotors, beddoes, model, base, distortion, timing):
+        v = np.zeros((base[0].shape[0], model.n_age + 1, 3))
         v[3, 5, 2] = np.nan
         return [v for _ in rotors]
 

@@ -110,7 +110,8 @@ def _chain(path: Path, out: Path) -> dict:
 
 def test_rotors_far_apart_give_each_isolated_result(tmp_path):
     """The two rotors 40 main-rotor radii apart: each rotor's set-up row, trimmed loads and free-wake BVI loads
-    are its one-rotor rig's (to 1e-6 relative)."""
+    are its one-rotor rig's (to 1e-6 relative), with the bundled rig's common period on (the rotors are not
+    coupled, so each keeps one turn)."""
     directory = _rig_dir(tmp_path)
     entries = yaml.safe_load(BUNDLED.read_text())["rotors"]
     entries[1] = {k: v for k, v in entries[1].items() if k != "lateral_angle_deg"}  # upright: the one-rotor form's axis

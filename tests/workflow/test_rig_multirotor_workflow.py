@@ -1,6 +1,7 @@
 """End-to-end: the bundled main + tail rotor rig (config/rigs/main_tail_rig.yaml) through the Snakefile: set-up
-(two rows), loads, the free wake of both rotors with each rotor's own control in the re-trim, acoustics, metrics
-and the loads at its stations (station_loads, base and bvi); a dry run of the rig targets."""
+(two rows), loads, the free wake of both rotors over their common period (the tail rotor's loads over its five
+turns in one main-rotor turn) with each rotor's own control in the re-trim, acoustics, metrics and the loads at its
+stations (station_loads, base and bvi); a dry run of the rig targets."""
 
 import os
 import re
@@ -56,14 +57,26 @@ def test_main_tail_rig_end_to_end(tmp_path):
     summary = read_table(base / "wake" / "interaction.parquet")
     retrimmed = summary.groupby("rotor")["retrimmed"].first()
     assert not retrimmed["tail"]  # fixed pitch: its thrust is the answer, never re-trimmed
-    for variant in ("base", "bvi"):
+    # common period (wake.free.common_period): one main-rotor turn, five of the tail rotor
+    assert read_metadata(base / "wake" / "interaction.parquet")["common_periods"] == [
+        "common period 0.0628319 s: 'main' 1 rev, 'tail' 5 rev"]
+    tail_meta = read_metadata(base / "bvi" / "tail.parquet")
+    assert tail_meta["revolutions"] == 5 and "revolutions" not in read_metadata(base / "bvi" / "main.parquet")
+    for variant, tail_turns in (("base", 1), ("bvi", 5)):
         table = read_table(base / "station_loads" / f"{variant}.parquet")
         assert list(table.columns) == ["rotor", "r_over_R", "psi_rad", "cn", "m2cn"]
-        assert len(table) == 2 * 2 * 36 and np.isfinite(table[["cn", "m2cn"]].to_numpy()).all()
+        assert len(table) == 2 * 36 * (1 + tail_turns) and np.isfinite(table[["cn", "m2cn"]].to_numpy()).all()
         assert read_metadata(base / "station_loads" / f"{variant}.parquet")["stage"] == "station_loads"
     base_loads = read_table(base / "station_loads" / "base.parquet")
     bvi_loads = read_table(base / "station_loads" / "bvi.parquet")
-    assert not np.allclose(base_loads["m2cn"], bvi_loads["m2cn"])  # the wakes' induced velocity changes the loads
+    main_bvi = bvi_loads[bvi_loads["rotor"] == "main"]["m2cn"].to_numpy()
+    assert not np.allclose(base_loads[base_loads["rotor"] == "main"]["m2cn"], main_bvi)  # the wakes change the loads
+    # the tail rotor's loads over the period: each of its five turns differs from the others (the main rotor's
+    # blades pass at 4/5 per tail turn), by far more than numerical noise, and far less than the loads themselves
+    tail = bvi_loads[(bvi_loads["rotor"] == "tail") & (bvi_loads["r_over_R"] == 0.87)].sort_values("psi_rad")
+    turns = tail["m2cn"].to_numpy().reshape(5, 36)
+    spread = np.abs(turns - turns.mean(axis=0)).max(axis=1) / np.ptp(turns)
+    assert np.all(spread > 1e-3) and np.all(spread < 0.2), spread
     metrics = read_table(base / "metrics" / "microphones_bvi.parquet")
     assert len(metrics) == 5 and np.isfinite(metrics["oaspl_db"]).all()
     for stage in ("station_loads",):
