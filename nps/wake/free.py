@@ -179,13 +179,16 @@ class RotorPlacement:
     """One rotor of the aircraft: its wake state and where it sits.
 
     ``hub_position_m`` (3,) in the aircraft-fixed frame with G axes (``trim.parquet`` hub at
-    t = 0), ``r_gh`` (3, 3) takes H components to G components.
+    t = 0), ``r_gh`` (3, 3) takes H components to G components; ``phase_rad``: the azimuth of blade 0
+    at t = 0 (the rotor's own sense, ``rotors[].phase_deg``), which places the rotors' blades relative to
+    one another (blade 0 at ψ = Ω t + phase_rad).
     """
 
     name: str
     state: wake.WakeState
     hub_position_m: np.ndarray
     r_gh: np.ndarray
+    phase_rad: float = 0.0
 
     def __post_init__(self):
         hub = np.asarray(self.hub_position_m, dtype=float)
@@ -194,6 +197,8 @@ class RotorPlacement:
             raise ValueError(f"rotor '{self.name}': hub_position_m: expected 3 finite numbers, got {self.hub_position_m!r}")
         if r_gh.shape != (3, 3) or not np.allclose(r_gh @ r_gh.T, np.eye(3), atol=1e-6):
             raise ValueError(f"rotor '{self.name}': r_gh: expected a 3 x 3 rotation matrix, got {self.r_gh!r}")
+        if not math.isfinite(self.phase_rad):
+            raise ValueError(f"rotor '{self.name}': phase_rad: expected a finite azimuth, got {self.phase_rad!r}")
 
     @property
     def to_common(self) -> np.ndarray:
@@ -579,13 +584,13 @@ def _add_grouped(px, py, pz, nodes, strength, radius, row, groups, profiles, s2,
 
 
 @kernel(parallel=True)
-def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortion, table_rows, revolutions, shifts,
-                    table_step, core, profiles, profile_rows, profile_s2, rot, off, sign, bound, far, group, ratio, n_age,
-                    dphi, vatistas_n):
+def _induced_kernel(points, row_psi, omega_ratio, phase_offset, params, gamma, beta, distortion, table_rows, revolutions,
+                    shifts, table_step, core, profiles, profile_rows, profile_s2, rot, off, sign, bound, far, group, ratio,
+                    n_age, dphi, vatistas_n):
     """Velocity (n_tgt, n_src, n_rows, n_pts, 3) induced at ``points`` (n_tgt, n_rows, n_pts, 3)
     by every source rotor's tip vortices, in each target rotor's H'. Row i of target t is the
     instant when the target's blade 0 is at ``row_psi[i]``; source q's blade 0 is then at
-    omega_ratio[t, q]·row_psi[i]; ``distortion``, ``table_rows``, ``revolutions``, ``shifts``: the
+    omega_ratio[t, q]·row_psi[i] + phase_offset[t, q] (φ_q − ratio·φ_t, the blade phases); ``distortion``, ``table_rows``, ``revolutions``, ``shifts``: the
     sources' tables and timing (:class:`_Sources`). rot (n_tgt, n_src, 3, 3), off (n_tgt, n_src, 3), sign
     (n_tgt, n_src) map source H' to target H' (:func:`_transforms`); ``bound[t, q]``: add the
     blades' bound vortices, straight from the hub centre to the tip node (strength Γ_v, core
@@ -617,8 +622,8 @@ def _induced_kernel(points, row_psi, omega_ratio, params, gamma, beta, distortio
         for q in range(n_src):
             n_blades = int(params[q, 1])
             _rotor_nodes(params[q], gamma[q], beta[q], distortion[q], table_rows[q], revolutions[q], shifts[q], table_step,
-                         core[q], omega_ratio[t, q] * row_psi[i], n_age, dphi, profile_rows[q], nodes, strength, radius,
-                         row)
+                         core[q], omega_ratio[t, q] * row_psi[i] + phase_offset[t, q], n_age, dphi, profile_rows[q], nodes,
+                         strength, radius, row)
             _to_target(nodes, n_blades, n_age, rot[t, q], off[t, q])
             q_profiles, s2 = profiles[q], profile_s2[q]
             g_sign = sign[t, q]
@@ -649,15 +654,18 @@ def _induced(rotors, sources: _Sources, timing: WakeTiming, targets, points, row
     at ``points`` (n_tgt, n_rows, n_pts, 3); ``targets``: rotor indices; bound vortices of the
     other rotors always, of the target itself when ``own_bound``; the other rotors' vortices
     with the far-field grouping of ``far_group`` segments beyond ``far_distance`` half-extents (1: none);
-    source blades placed by ``timing.speed_ratio`` (rows: targets)."""
+    source blades placed by ``timing.speed_ratio`` (rows: targets) and the rotors' ``phase_rad``."""
     maps = [_transforms(rotors, t) for t in targets]
     rot = np.ascontiguousarray([m[0] for m in maps])
     off = np.ascontiguousarray([m[1] for m in maps])
     sign = np.ascontiguousarray([m[2] for m in maps])
     ratio = np.ascontiguousarray(timing.speed_ratio[list(targets)])
+    phase = np.array([r.phase_rad for r in rotors])
+    phase_offset = np.ascontiguousarray(phase[None, :] - ratio * phase[list(targets)][:, None])
     bound = np.ascontiguousarray([[own_bound or q != t for q in range(len(rotors))] for t in targets], dtype=np.bool_)
     far = np.ascontiguousarray([[q != t for q in range(len(rotors))] for t in targets], dtype=np.bool_)
     return _induced_kernel(np.ascontiguousarray(points, dtype=float), np.ascontiguousarray(row_psi, dtype=float), ratio,
+                           phase_offset,
                            sources.params, sources.gamma, sources.beta, sources.distortion, sources.table_rows,
                            sources.revolutions, sources.blade_shift, float(table_step),
                            np.ascontiguousarray(sources.core), sources.profiles, sources.profile_rows,

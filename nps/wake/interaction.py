@@ -41,6 +41,7 @@ is it) and is never re-trimmed: it gets exactly its isolated result.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Mapping
 
@@ -76,16 +77,18 @@ class AircraftBVI:
     summary: pd.DataFrame
 
 
-def placements(trim: pd.DataFrame, disks: Mapping[str, pd.DataFrame],
-               summaries: Mapping[str, pd.DataFrame]) -> list[freewake.RotorPlacement]:
-    """Wake state and placement of every rotor in ``disks`` from the artifacts."""
+def placements(trim: pd.DataFrame, disks: Mapping[str, pd.DataFrame], summaries: Mapping[str, pd.DataFrame],
+               rotor_configs: Mapping[str, Mapping] | None = None) -> list[freewake.RotorPlacement]:
+    """Wake state and placement of every rotor in ``disks`` from the artifacts; blade phases from the
+    rotors' ``phase_deg`` in ``rotor_configs`` (absent: 0)."""
     out = []
     for name, disk in disks.items():
         row = trim_row(trim, name)
         state = bvi.wake_state(disk, row, bvi.summary_value(summaries[name], "ct", f"{name} loads summary"))
         hub = np.array([row["hub_x_m"], row["hub_y_m"], row["hub_z_m"]], dtype=float)
         r_gh = np.array([[row[f"r_gh_{i}{j}"] for j in range(3)] for i in range(3)], dtype=float)
-        out.append(freewake.RotorPlacement(name, state, hub, r_gh))
+        phase = math.radians(float((rotor_configs or {}).get(name, {}).get("phase_deg", 0.0)))
+        out.append(freewake.RotorPlacement(name, state, hub, r_gh, phase))
     return out
 
 
@@ -119,7 +122,7 @@ def aircraft_bvi_loads(
                          f"summaries {sorted(summaries)} must name the same rotors")
     if bvi_model.removed_harmonics != 1:
         raise ValueError("aircraft_bvi_loads: the interaction rule needs BVIModel.removed_harmonics = 1")
-    rotors = placements(trim, disks, summaries)
+    rotors = placements(trim, disks, summaries, rotor_configs)
     solution = freewake.relax(rotors, wake_model, free_model)
     coupled = {r.name: len(solution.group_of(i)) > 1 for i, r in enumerate(rotors)}
     alone = {r.name: freewake.relax([r], wake_model, free_model) for r in rotors if coupled[r.name]}
