@@ -87,7 +87,8 @@ def placements(trim: pd.DataFrame, disks: Mapping[str, pd.DataFrame], summaries:
         state = bvi.wake_state(disk, row, bvi.summary_value(summaries[name], "ct", f"{name} loads summary"))
         hub = np.array([row["hub_x_m"], row["hub_y_m"], row["hub_z_m"]], dtype=float)
         r_gh = np.array([[row[f"r_gh_{i}{j}"] for j in range(3)] for i in range(3)], dtype=float)
-        phase = math.radians(float((rotor_configs or {}).get(name, {}).get("phase_deg", 0.0)))
+        config = (rotor_configs or {}).get(name, {})
+        phase = math.radians(float(config["phase_deg"])) if "phase_deg" in config else 0.0
         out.append(freewake.RotorPlacement(name, state, hub, r_gh, phase))
     return out
 
