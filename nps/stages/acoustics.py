@@ -26,6 +26,7 @@ import math
 
 import numpy as np
 
+from nps.core import periods
 from nps.noise.acoustics import LOADING, THICKNESS, AcousticsError, Observers
 from nps.app.io import check_provenance, read_metadata, read_table, rotor_path, write_table
 from nps.noise.observers import OBSERVER_STAGES
@@ -55,6 +56,10 @@ def check_disk_geometry(disk, row, path, revolutions: int = 1) -> None:
     n_rows, n_r = psi.size, disk["r_m"].nunique()
     n_psi = n_rows // revolutions
     spans = "" if revolutions == 1 else f" over the {revolutions} revolutions its metadata records"
+    if revolutions == 1 and periods.table_revolutions(psi) > 1:
+        raise ValueError(f"{path}: psi_rad spans {periods.table_revolutions(psi)} revolutions but the table's metadata "
+                         "records none ('revolutions', 'blade_shift_steps', as the wake stage writes them over a "
+                         "common period): expected one revolution, or the wake stage's table")
     if (len(disk) != n_rows * n_r or n_psi * revolutions != n_rows
             or not np.allclose(psi, 2.0 * np.pi * np.arange(n_rows) / max(n_psi, 1), rtol=0.0, atol=1e-9)):
         raise ValueError(f"{path}: psi_rad: expected the azimuth grid 2 pi i/n_psi{spans} with every azimuth at the "

@@ -137,3 +137,24 @@ def test_a_repeated_table_radiates_as_itself(moving):
     np.testing.assert_allclose(later, one, atol=1e-3 * scale)
     wrong = radiate_rotor(bvi.tile_disk(disk, 3), row, obs, grid, blade_shift_steps=[0, 0, 0])  # all blades' loads at blade 0's
     assert np.abs(wrong - one).max() > 0.05 * scale
+
+
+def test_a_table_over_several_turns_needs_its_metadata(tmp_path):
+    """The acoustics stage reads how a table spans several turns from its metadata; a bare table over several
+    turns (another tool's, or metadata lost) is refused naming the file, before any signal is written."""
+    from nps.app.io import rotor_path, write_table
+    from nps.stages import acoustics
+    from nps.noise.observers import points
+
+    trim = complete_trim(pd.DataFrame([{"rotor": "a", "n_blades": np.int32(3), "omega_rad_s": 40.0, "radius_m": 2.0,
+                                        "hub_z_m": 1.0, "thrust_N": 800.0, "ct": 0.005}]))
+    where = {"aircraft": "x", "segment": "s"}
+    write_table(bvi.tile_disk(_disk(), 3), rotor_path(tmp_path / "disks", "a"), stage="bvi", metadata={**where, "rotor": "a"})
+    write_table(trim, tmp_path / "trim.parquet", stage="trim", metadata=where)
+    write_table(points([[20.0, 5.0, -3.0]]), tmp_path / "obs.parquet", stage="observers", metadata={**where, "obsset": "o"})
+    params = {"rotors": ["a"], "hinge_offsets_m": {"a": 0.0}, "thickness": "dual_compact", "chord_fractions": [0.13, 0.87],
+              "samples_per_rev": 64, "obsset": "o", "variant": "bvi", **where}
+    with pytest.raises(ValueError, match=r"a.parquet: psi_rad spans 3 revolutions but the table's metadata records none"):
+        acoustics.run({"disks": tmp_path / "disks", "trim": tmp_path / "trim.parquet", "observers": tmp_path / "obs.parquet"},
+                      {"signals": tmp_path / "signals"}, params)
+    assert not (tmp_path / "signals").exists()
