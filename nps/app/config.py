@@ -884,15 +884,17 @@ def _period_problems(data: Mapping, rotors, conditions) -> list[tuple[str, str]]
     common period (nps.core.periods.common_period with the rig's tolerance and longest period)."""
     from nps.core import periods
     from nps.rig.case import omega_of
+    from nps.wake.free import FreeWakeModel
 
-    free = data.get("wake", {}).get("free", {})
-    if (data.get("wake", {}).get("model") != "free" or not free.get("common_period") or len(rotors) < 2
-            or not all("omega_rad_s" in c or "rpm" in c for c in conditions)):
+    wake = data.get("wake", {})
+    if wake.get("model") != "free" or len(rotors) < 2 or not all("omega_rad_s" in c or "rpm" in c for c in conditions):
+        return []
+    model = FreeWakeModel.from_config(wake.get("free"))  # the schema's bounds hold: the model's defaults fill the rest
+    if not model.common_period:
         return []
     try:
-        periods.common_period([r["name"] for r in rotors], [omega_of(c) for c in conditions],
-                              free.get("period_tolerance", periods.DEFAULT_TOLERANCE),
-                              free.get("max_period_revolutions", periods.DEFAULT_MAX_REVOLUTIONS))
+        periods.common_period([r["name"] for r in rotors], [omega_of(c) for c in conditions], model.period_tolerance,
+                              model.max_period_revolutions)
     except periods.PeriodError as exc:
         return [("wake.free.common_period", str(exc))]
     return []

@@ -51,10 +51,6 @@ class CommonPeriod:
     def exact(self) -> bool:
         return all(abs(e) <= EXACT_RTOL for e in self.ratio_errors)
 
-    def speed_ratio(self, q: int, t: int) -> float:
-        """Ω_q/Ω_t of the periodic pattern: m_q/m_t (the rational ratio, exact or approximated)."""
-        return self.revolutions[q] / self.revolutions[t]
-
     def describe(self) -> str:
         """One line: the period and, per rotor, its revolutions and the ratio error."""
         parts = [f"'{name}' {m} rev" + ("" if abs(e) <= EXACT_RTOL else f" (speed ratio approximated by {e:+.3%})")

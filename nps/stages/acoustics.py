@@ -56,8 +56,9 @@ def check_disk_geometry(disk, row, path, revolutions: int = 1) -> None:
     n_rows, n_r = psi.size, disk["r_m"].nunique()
     n_psi = n_rows // revolutions
     spans = "" if revolutions == 1 else f" over the {revolutions} revolutions its metadata records"
-    if revolutions == 1 and periods.table_revolutions(psi) > 1:
-        raise ValueError(f"{path}: psi_rad spans {periods.table_revolutions(psi)} revolutions but the table's metadata "
+    spanned = periods.table_revolutions(psi)
+    if revolutions == 1 and spanned > 1:
+        raise ValueError(f"{path}: psi_rad spans {spanned} revolutions but the table's metadata "
                          "records none ('revolutions', 'blade_shift_steps', as the wake stage writes them over a "
                          "common period): expected one revolution, or the wake stage's table")
     if (len(disk) != n_rows * n_r or n_psi * revolutions != n_rows

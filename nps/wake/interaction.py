@@ -136,9 +136,10 @@ def aircraft_bvi_loads(
         geometry = RotorGeometry.from_config(rotor_configs[name])
         row = trim_row(trim, name)
         m = solution.revolutions(p)
-        grid = bvi.disk_grid(bvi.tile_disk(disk, m), f"{name} loads", common_period=True)
+        tiled = bvi.tile_disk(disk, m)
+        grid = bvi.disk_grid(tiled, f"{name} loads", common_period=True)
         n_psi = grid.shape[0] // m
-        beta = np.tile(disk["beta_rad"].to_numpy(dtype=float).reshape(n_psi, -1), (m, 1))
+        beta = tiled["beta_rad"].to_numpy(dtype=float).reshape(grid.shape)
         v = freewake.disk_induced_velocity(solution, name, grid.psi_rad, grid.r_m, beta)
         high_ut, high_up, low_ut, low_up, parts = _split_by_source(v, p, grid.psi_rad, beta, m, momentum)
         if coupled[name]:
@@ -164,7 +165,7 @@ def aircraft_bvi_loads(
             result = bvi.loads_with_increments(bvi.tile_disk(retrim.disk, m), row, geometry, high_ut, high_up,
                                                v.sum(axis=0), bvi_model)
         else:
-            result = bvi.loads_with_increments(bvi.tile_disk(disk, m), row, geometry, high_ut + np.tile(low_ut, (m, 1)),
+            result = bvi.loads_with_increments(tiled, row, geometry, high_ut + np.tile(low_ut, (m, 1)),
                                                high_up + np.tile(low_up, (m, 1)), v.sum(axis=0), bvi_model)
         results[name], retrims[name] = result, retrim
         rows.extend(_summary_rows(name, [r.name for r in rotors], p, parts, retrim is not None, change))
