@@ -13,12 +13,10 @@ next time that output is written. One writer per output path at a time (the work
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 import re
 import secrets
-from functools import lru_cache
 from pathlib import Path
 from typing import Mapping
 
@@ -28,23 +26,12 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 import nps
+from nps.core.jit import source_hash
 from nps.noise.signals import SIGNAL_COLUMNS
-
-_PACKAGE_DIR = Path(__file__).resolve().parents[1]  # the nps package
 
 
 class ArtifactError(ValueError):
     """An artifact is missing, malformed or contains non-finite numbers."""
-
-
-@lru_cache(maxsize=1)
-def source_hash() -> str:
-    """SHA-256 (first 16 hex digits) of the ``nps`` package sources, in path order."""
-    digest = hashlib.sha256()
-    for path in sorted(_PACKAGE_DIR.rglob("*.py")):
-        digest.update(path.relative_to(_PACKAGE_DIR).as_posix().encode())
-        digest.update(path.read_bytes())
-    return digest.hexdigest()[:16]
 
 
 def _arrow_type(series: pd.Series) -> pa.DataType:

@@ -1,18 +1,44 @@
 """Numba options of every NPS kernel, in one place.
 
 Every compiled kernel is declared with :func:`kernel`: on-disk caching (``cache=True``, the cache
-lives in ``NUMBA_CACHE_DIR``), NumPy's error model (a division by zero gives inf/NaN instead of
+lives in ``NUMBA_CACHE_DIR``/<:func:`source_hash`>), NumPy's error model (a division by zero gives inf/NaN instead of
 raising inside a compiled loop; the callers check finiteness) and no fast-math, so results are
 bit-reproducible. ``parallel=True`` marks kernels whose outer loop is a ``numba.prange`` over
 independent items (observers, points, stations); ``inline=True`` marks small device functions
 inlined into their callers.
+
+numba validates a cached kernel by its own file's time stamp only, not by the files of the functions
+it inlines or calls: a kernel in ``nps/wake/free.py`` cached before an edit of ``nps/wake/vortex.py`` would
+load with the old arithmetic. The cache of one version of the sources therefore lives in a directory of
+its own, named by the hash of every ``nps`` source file (``NUMBA_CACHE_DIR`` set: under it; unset:
+``nps/__pycache__/numba``); an edit anywhere in the package compiles afresh.
 """
 
 from __future__ import annotations
 
+import hashlib
+import os
+from functools import lru_cache
+from pathlib import Path
+
 import numba
 
 prange = numba.prange
+_PACKAGE_DIR = Path(__file__).resolve().parents[1]  # the nps package
+
+
+@lru_cache(maxsize=1)
+def source_hash() -> str:
+    """SHA-256 (first 16 hex digits) of the ``nps`` package sources, in path order."""
+    digest = hashlib.sha256()
+    for path in sorted(_PACKAGE_DIR.rglob("*.py")):
+        digest.update(path.relative_to(_PACKAGE_DIR).as_posix().encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()[:16]
+
+
+numba.config.CACHE_DIR = os.path.join(numba.config.CACHE_DIR or str(_PACKAGE_DIR / "__pycache__" / "numba"),
+                                      source_hash())
 
 
 def kernel(function=None, *, parallel: bool = False, inline: bool = False):
