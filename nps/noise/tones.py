@@ -171,16 +171,23 @@ def _fluctuation_power(p: np.ndarray) -> np.ndarray:
     return np.mean((p - p.mean(axis=-1, keepdims=True)) ** 2, axis=-1)
 
 
+TIE_DB = 1e-6  # levels this close rank as equal (loudest_observers)
+
+
 def loudest_observers(signals: Mapping[str, pd.DataFrame], rotors, count: int, tone_sum: str = "coherent") -> np.ndarray:
-    """Ids of the ``count`` observers with the highest mean-square total pressure (ties: lower id first);
-    ``tone_sum`` ``incoherent``: the sum of the rotors' mean-square pressures."""
+    """Ids of the ``count`` observers with the highest mean-square total pressure; ``tone_sum``
+    ``incoherent``: the sum of the rotors' mean-square pressures. Levels are ranked rounded to multiples
+    of ``TIE_DB``, so that mirror observers of a symmetric set (equal but for rounding) tie, and a tie takes
+    the lower id first: the choice does not follow the last bits of the arithmetic."""
     check_tone_sum(tone_sum)
     ids, _, per_rotor, _, _ = _rotor_pressures(signals, list(rotors))
     if tone_sum == "incoherent":
         power = sum(_fluctuation_power(p) for p in per_rotor.values())
     else:
         power = _fluctuation_power(sum(per_rotor.values()))
-    order = np.lexsort((ids, -power))
+    with np.errstate(divide="ignore"):
+        level = np.round(10.0 * np.log10(power) / TIE_DB)
+    order = np.lexsort((ids, -level))
     return np.sort(ids[order[: max(0, int(count))]])
 
 

@@ -199,3 +199,20 @@ def test_campaign_output_options_and_their_errors(repo_root):
     assert only.tone_observer_sets("seg5") == ["hsi"] and only.tone_observer_sets("seg1") == []
     with pytest.raises(ConfigError, match=r"outputs.tone_observer_sets\[0\]"):
         load_campaign(dict(config, outputs={"tone_observer_sets": ["mics"]}), root=repo_root)
+
+
+def test_loudest_observers_rank_levels_within_the_tie_tolerance_as_equal():
+    """Mirror observers whose levels differ by rounding only (1e-13 relative in mean square) tie: the lower id
+    is taken whichever carries the last bit; a real difference (0.01 dB) still ranks."""
+    sig = signals()
+    for scale in (1.0 + 1e-13, 1.0 - 1e-13):
+        mirrored = {}
+        for rotor, table in sig.items():
+            twin = table[table.observer == 3].copy()
+            twin["observer"] = np.int32(2)
+            twin["p_Pa"] = twin["p_Pa"] * np.sqrt(scale)
+            mirrored[rotor] = pd.concat([table, twin], ignore_index=True)
+        assert list(loudest_observers(mirrored, list(OMEGA), 1)) == [2]
+    for rotor, table in mirrored.items():
+        table.loc[table.observer == 2, "p_Pa"] *= 10 ** (-0.01 / 20)
+    assert list(loudest_observers(mirrored, list(OMEGA), 1)) == [3]
