@@ -63,7 +63,7 @@ from nps.core import periods
 from nps.core.jit import kernel, prange
 from nps.wake import prescribed as wake
 from nps.wake.vortex import (POINT_VORTEX_PROFILE, VortexModel, add_polyline_velocity, core_radius, profile_row,
-                              segment_velocity)
+                              segment_velocity, structure_row)
 
 # r_c0 / c of a young tip vortex: HART-II PIV (van der Wall & Richard 2006; Yu et al. 2002),
 # core radii of ≈ 0.14 c for the young advancing- and retreating-side vortices.
@@ -479,12 +479,14 @@ def _rotor_nodes(p, gamma_tab, beta_tab, table, table_rows, revolutions, shift, 
     structure-factor row (of ``n_rows``, :func:`nps.wake.vortex.profile_row`) per node; ``core``:
     :meth:`VortexModel.core_constants`."""
     n_blades = int(p[1])
-    for k in range(n_blades):
-        psi_k = psi0 + 2.0 * math.pi * k / n_blades
-        psi_table = psi0 + shift[k]
-        for j in range(n_age + 1):
-            phi = j * dphi
-            x, y, z, g = wake.node_position(p, gamma_tab, beta_tab, psi_k - phi, phi)
+    cpw, spw = math.cos(p[3]), math.sin(p[3])
+    for j in range(n_age + 1):
+        phi = j * dphi
+        r_v = wake.vortex_radius(p, phi)
+        for k in range(n_blades):
+            psi_k = psi0 + 2.0 * math.pi * k / n_blades
+            psi_table = psi0 + shift[k]
+            x, y, z, g = wake.node_position_at(p, gamma_tab, beta_tab, psi_k - phi, phi, r_v, cpw, spw)
             dx, dy, dz = _distortion_at(table, table_rows, revolutions, psi_table, phi, table_step)
             nodes[k, j, 0], nodes[k, j, 1], nodes[k, j, 2] = x + dx, y + dy, z + dz
             strength[k, j] = g
@@ -555,11 +557,15 @@ def _add_grouped(px, py, pz, nodes, strength, radius, row, groups, profiles, s2,
     """Add to (vx, vy, vz) (n_pts,) the velocity at (px, py, pz) of blade k's tip vortex in groups of
     ``group`` segments (``groups``: :func:`_far_groups`): a group beyond its far distance from a
     point counts as its chord segment (with the structure-factor row of its first node), a near
-    one segment by segment. ``near`` (n_pts,) int and ``scratch`` (4, n_pts): work arrays."""
+    one segment by segment (the near points gathered, so that the sweep vectorises, and scattered
+    back: each point sums in the same order). ``near`` (n_pts,) int and ``scratch`` (10, n_pts): work
+    arrays."""
     n_groups = (n_age + group - 1) // group
+    structured = profiles.shape[1] > 1
     for g in range(n_groups):
         j0 = g * group
         j1 = min(j0 + group, n_age)
+        profile = structure_row(profiles, row[k, j0], structured)
         n_near = 0
         for m in range(px.shape[0]):  # the chord of every far group, all points at once
             dx, dy, dz = px[m] - groups[k, g, 0], py[m] - groups[k, g, 1], pz[m] - groups[k, g, 2]
@@ -569,18 +575,26 @@ def _add_grouped(px, py, pz, nodes, strength, radius, row, groups, profiles, s2,
             dx, dy, dz = segment_velocity(
                 r1x, r1y, r1z, math.sqrt(r1x * r1x + r1y * r1y + r1z * r1z),
                 r2x, r2y, r2z, math.sqrt(r2x * r2x + r2y * r2y + r2z * r2z),
-                g_sign * groups[k, g, 4], groups[k, g, 5], vatistas_n, profiles.shape[1] > 1, profiles[row[k, j0]], s2,
+                g_sign * groups[k, g, 4], groups[k, g, 5], vatistas_n, structured, profile, s2,
             )
             vx[m] += dx if is_far else 0.0
             vy[m] += dy if is_far else 0.0
             vz[m] += dz if is_far else 0.0
             near[n_near] = m
             n_near += 0 if is_far else 1
+        if n_near == 0:
+            continue
         for e in range(n_near):  # segment by segment where the group is near
             m = near[e]
-            add_polyline_velocity(px[m:m + 1], py[m:m + 1], pz[m:m + 1], nodes, strength, radius, profiles, row, s2, k,
-                                  j0, j1, g_sign, vatistas_n, scratch[0, :1], scratch[1, :1], scratch[2, :1],
-                                  scratch[3, :1], vx[m:m + 1], vy[m:m + 1], vz[m:m + 1])
+            scratch[4, e], scratch[5, e], scratch[6, e] = px[m], py[m], pz[m]
+            scratch[7, e], scratch[8, e], scratch[9, e] = vx[m], vy[m], vz[m]
+        add_polyline_velocity(scratch[4, :n_near], scratch[5, :n_near], scratch[6, :n_near], nodes, strength, radius,
+                              profiles, row, s2, k, j0, j1, g_sign, vatistas_n, scratch[0, :n_near], scratch[1, :n_near],
+                              scratch[2, :n_near], scratch[3, :n_near], scratch[7, :n_near], scratch[8, :n_near],
+                              scratch[9, :n_near])
+        for e in range(n_near):
+            m = near[e]
+            vx[m], vy[m], vz[m] = scratch[7, e], scratch[8, e], scratch[9, e]
 
 
 @kernel(parallel=True)
@@ -616,7 +630,7 @@ def _induced_kernel(points, row_psi, omega_ratio, phase_offset, params, gamma, b
         row = np.empty((max_b, n_age + 1), dtype=np.int64)
         groups = np.empty((max_b, n_groups, 6))
         px, py, pz = points[t, i, :, 0].copy(), points[t, i, :, 1].copy(), points[t, i, :, 2].copy()
-        scratch = np.empty((4, n_pts))
+        scratch = np.empty((10, n_pts))
         vx, vy, vz = np.empty(n_pts), np.empty(n_pts), np.empty(n_pts)
         near = np.empty(n_pts, dtype=np.int64)
         for q in range(n_src):

@@ -218,9 +218,22 @@ def _periodic_interp(table, psi):
 def node_position(p, gamma_tab, beta_tab, psi_v, phi):
     """Position (x, y, z) (m, H') and strength Γ_v (m²/s) of the tip vortex released at ψ_v, at
     age φ (eq. 5.4–5.7; ``p``: :func:`wake_scalars`, tables on ψ_i = 2π i / N)."""
+    return node_position_at(p, gamma_tab, beta_tab, psi_v, phi, vortex_radius(p, phi), math.cos(p[3]), math.sin(p[3]))
+
+
+@kernel(inline=True)
+def vortex_radius(p, phi):
+    """Radius r_v / R of the contracting tip vortex at age φ (eq. 5.4)."""
+    ct, d, r_r = p[7], p[11], p[12]
+    return r_r * (d + (1.0 - d) * math.exp(-(0.145 + 27.0 * ct) * phi))
+
+
+@kernel(inline=True)
+def node_position_at(p, gamma_tab, beta_tab, psi_v, phi, r_v, cpw, spw):
+    """:func:`node_position` given the age's radius ``r_v`` (:func:`vortex_radius`) and cos, sin of the
+    wind azimuth ψ_w (``cpw``, ``spw``), which loops over the nodes of a snapshot evaluate once."""
     radius, mu, psi_w, mu_z, lam0, chi = p[0], p[2], p[3], p[4], p[5], p[6]
-    ct, a, b, c, d, r_r = p[7], p[8], p[9], p[10], p[11], p[12]
-    r_v = r_r * (d + (1.0 - d) * math.exp(-(0.145 + 27.0 * ct) * phi))
+    a, b, c, r_r = p[8], p[9], p[10], p[12]
     psi_rel = psi_v - psi_w
     cw, sw = math.cos(psi_rel), math.sin(psi_rel)
     xw = r_v * cw + mu * phi
@@ -230,7 +243,6 @@ def node_position(p, gamma_tab, beta_tab, psi_v, phi):
     z = r_r * math.sin(beta) - mu_z * phi - lam0 * phi * (
         a * chi * (cw + mu * phi / (2.0 * r_v) - lateral * lateral * lateral) - 2.0 * b * mu * sw + c
     )
-    cpw, spw = math.cos(psi_w), math.sin(psi_w)
     gamma = _periodic_interp(gamma_tab, psi_v)
     return (
         radius * (xw * cpw - yw * spw),
@@ -252,11 +264,13 @@ def _blade_wake(p, vortex_core, gamma_tab, beta_tab, psi_blade, n_age, n_rows, n
     """
     n_blades = int(p[1])
     dphi = p[13]
-    for k in range(n_blades):
-        psi_k = psi_blade + 2.0 * math.pi * k / n_blades
-        for j in range(n_age + 1):
-            phi = j * dphi
-            x, y, z, g = node_position(p, gamma_tab, beta_tab, psi_k - phi, phi)
+    cpw, spw = math.cos(p[3]), math.sin(p[3])
+    for j in range(n_age + 1):
+        phi = j * dphi
+        r_v = vortex_radius(p, phi)
+        for k in range(n_blades):
+            psi_k = psi_blade + 2.0 * math.pi * k / n_blades
+            x, y, z, g = node_position_at(p, gamma_tab, beta_tab, psi_k - phi, phi, r_v, cpw, spw)
             nodes[k, j, 0], nodes[k, j, 1], nodes[k, j, 2] = x, y, z
             strength[k, j] = g
             core[k, j] = core_radius(vortex_core, g, phi)

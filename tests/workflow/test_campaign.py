@@ -67,22 +67,19 @@ def test_campaign_artifacts_are_finite(campaign_dir):
 
 
 def test_campaign_reproduces_the_committed_manifest(campaign_dir):
-    """Every artifact of the tiny campaign has the content digest recorded in tests/data/manifests (made before
-    the issue-16 restructuring; only a deliberate physics change may regenerate it)."""
+    """Every artifact of the tiny campaign has the content digest recorded in tests/data/manifests (only a
+    deliberate physics change may regenerate it); the seg3 wake and BVI tables carry their validity warning
+    (2 wake revolutions, short of the descent's ~2.5), the helicopter's metrics its model-range warnings."""
     from nps.app.digests import compare, digests, read_manifest
 
     results = campaign_dir / "results"
     manifest = read_manifest(tiny_manifest())
-    # the seg3 wake and BVI tables (2 wake revolutions, short of the descent's ~2.5) carry their validity
-    # warning, the manifest predates it: byte-identical once that one metadata key is removed
     warned = sorted(n for n in manifest if b"nps.validity_warnings" in (pq.read_schema(results / n).metadata or {}))
     assert warned == sorted(n for n in manifest if re.fullmatch(r"\w+/seg3/(wake|bvi)/\w+\.parquet", n)), warned
-    # the metrics tables of the helicopter (Pegg on its tail rotor, outside his data range) carry their model-range
-    # warnings (nps.model_warnings), also newer than the manifest
     modelled = sorted(n for n in manifest if b"nps.model_warnings" in (pq.read_schema(results / n).metadata or {}))
     assert modelled and all(re.fullmatch(r"\w+/seg\d+/metrics/\w+\.parquet", n) for n in modelled), modelled
     assert any(n.startswith("helicopter/") for n in modelled), modelled
-    problems = compare(digests(results, drop=("nps.validity_warnings", "nps.model_warnings")), manifest)
+    problems = compare(digests(results), manifest)
     assert not problems, problems[:20]
     summary = (results / "helicopter/summary.csv").read_text()
     assert "rotor 'main': wake_revolutions = 2 is outside the validity limit" in summary
