@@ -37,8 +37,16 @@ def source_hash() -> str:
     return digest.hexdigest()[:16]
 
 
-numba.config.CACHE_DIR = os.path.join(numba.config.CACHE_DIR or str(_PACKAGE_DIR / "__pycache__" / "numba"),
-                                      source_hash())
+def _cache_dir() -> str:
+    """``NUMBA_CACHE_DIR`` (unset: ``nps/__pycache__/numba``) joined with :func:`source_hash`, once: a child
+    process inheriting the joined directory keeps it."""
+    base = os.environ.get("NUMBA_CACHE_DIR") or str(_PACKAGE_DIR / "__pycache__" / "numba")
+    return base if os.path.basename(os.path.normpath(base)) == source_hash() else os.path.join(base, source_hash())
+
+
+# in the environment as well: numba re-reads its configuration from the environment whenever a NUMBA_ variable
+# changes (nps.stages.job sets NUMBA_NUM_THREADS), which would drop a directory set in numba.config alone
+os.environ["NUMBA_CACHE_DIR"] = numba.config.CACHE_DIR = _cache_dir()
 
 
 def kernel(function=None, *, parallel: bool = False, inline: bool = False):
