@@ -26,19 +26,19 @@ from pathlib import Path
 import pyarrow.parquet as pq
 
 
-def content_digest(path: Path, drop: tuple[str, ...] = ()) -> str:
-    """SHA-256 of the artifact with ``nps.source_hash`` blanked and the metadata keys ``drop`` removed."""
+def content_digest(path: Path) -> str:
+    """SHA-256 of the artifact with ``nps.source_hash`` blanked."""
     table = pq.read_table(path)
-    meta = {key: value for key, value in (table.schema.metadata or {}).items() if key.decode() not in drop}
+    meta = dict(table.schema.metadata or {})
     meta[b"nps.source_hash"] = b""
     buffer = io.BytesIO()
     pq.write_table(table.replace_schema_metadata(meta), buffer, compression="zstd", write_statistics=True)
     return hashlib.sha256(buffer.getvalue()).hexdigest()
 
 
-def digests(results: Path, drop: tuple[str, ...] = ()) -> dict[str, str]:
-    """Relative artifact path → content digest (metadata keys ``drop`` removed), for every Parquet file under ``results``."""
-    return {p.relative_to(results).as_posix(): content_digest(p, drop) for p in sorted(results.rglob("*.parquet"))}
+def digests(results: Path) -> dict[str, str]:
+    """Relative artifact path → content digest, for every Parquet file under ``results``."""
+    return {p.relative_to(results).as_posix(): content_digest(p) for p in sorted(results.rglob("*.parquet"))}
 
 
 def cpu_class() -> str:
