@@ -7,7 +7,11 @@ known path y(τ) in the ground frame G (medium at rest) and carries
   line), radiated with Farassat's formulation 1A reduced to a point (thesis eq. 2.4, read with
   the denominators of the published formulation; see below), and optionally
 * a volume ``V`` (m³), a compact thickness monopole: p_T = ρ0 V/(4π) ∂²/∂t² [1/(r|1−M_r|)]_ret,
-  the compact limit of the thesis' eq. 2.3 (the model ANOPP2 and AcousticAnalogies.jl use).
+  the compact limit of the thesis' eq. 2.3 (the model ANOPP2 and AcousticAnalogies.jl use), or
+* a mass flux ``Q`` = ρ0 v·A (kg/s) with its rate Q̇: a surface panel of area vector A (outward, m²) moving
+  with v, whose thickness term of formulation 1A reduced to the panel centre is
+  4π p_T = Q̇/(r(1−M_r)²) + Q (r Ṁ_r + c0 M_r − c0 M²)/(r²(1−M_r)³) (Farassat 2007, eq. 1A's thickness
+  integrand times the panel area; midpoint quadrature of the surface integral over the panels).
 
 Compact F1A loading, with r = x(t) − y(τ), r = |r| = c0 (t − τ), M = v/c0, Ṁ = a/c0 and the
 subscripts r, M meaning dot products with r̂ and M::
@@ -72,9 +76,11 @@ class CompactSources:
     Arrays have shape (n_node, n_tau, 3) for vectors: ``position_m``, ``velocity_mps``,
     ``acceleration_mps2``, ``jerk_mps3`` (d³y/dτ³, needed only by monopole nodes),
     ``force_N`` (force on the fluid, N) and ``force_rate_N_s`` (dF/dτ). ``volume_m3`` (n_node,)
-    is the compact-monopole volume (0 for a pure dipole node). ``groups`` names the output
-    groups; ``dipole_group`` and ``monopole_group`` (n_node,) index into it (−1: none).
-    ``time_s`` (n_tau,) is uniform.
+    is the compact-monopole volume (0 for a pure dipole node). ``mass_flux_kg_s`` and
+    ``mass_flux_rate_kg_s2`` (n_node, n_tau), optional: the surface-panel thickness source Q = ρ0 v·A and
+    dQ/dτ (a node carries a volume or a mass flux, not both). ``groups`` names the output
+    groups; ``dipole_group`` and ``monopole_group`` (n_node,) index into it (−1: none); the monopole
+    group receives the volume's or the mass flux's thickness noise. ``time_s`` (n_tau,) is uniform.
 
     Periodic sources: ``period_s`` is set, the samples are one period (τ_j = time_s[0] + j·T/n),
     the motion is periodic in a frame translating with ``frame_velocity_mps`` and ``copies``
@@ -95,6 +101,8 @@ class CompactSources:
     period_s: float | None = None
     frame_velocity_mps: np.ndarray | None = None
     copies: int = 1
+    mass_flux_kg_s: np.ndarray | None = None
+    mass_flux_rate_kg_s2: np.ndarray | None = None
 
     def __post_init__(self):
         n_node, n_tau = self.position_m.shape[:2]
@@ -110,6 +118,17 @@ class CompactSources:
             raise AcousticsError("sources: 'volume_m3' must be finite with one value per node")
         if self.period_s is not None and (self.frame_velocity_mps is None or self.copies < 1):
             raise AcousticsError("periodic sources need frame_velocity_mps and copies >= 1")
+        if (self.mass_flux_kg_s is None) != (self.mass_flux_rate_kg_s2 is None):
+            raise AcousticsError("sources: give both 'mass_flux_kg_s' and 'mass_flux_rate_kg_s2' or neither")
+        if self.mass_flux_kg_s is not None:
+            for name in ("mass_flux_kg_s", "mass_flux_rate_kg_s2"):
+                value = getattr(self, name)
+                if value.shape != (n_node, n_tau) or not np.isfinite(value).all():
+                    raise AcousticsError(f"sources: '{name}' must be finite with shape {(n_node, n_tau)}, got {value.shape}")
+            both = (self.volume_m3 != 0.0) & np.any(self.mass_flux_kg_s != 0.0, axis=1)
+            if both.any():
+                raise AcousticsError(f"sources: node {int(np.argmax(both))} has both a volume and a mass flux; "
+                                     "a node is a compact monopole or a surface panel, not both")
 
 
 @dataclass(frozen=True)
@@ -148,8 +167,8 @@ class TimeGrid:
 # ----------------------------------------------------------------------------------------------
 # Packed source layout: one contiguous row of N_Q float64 per (node, source step), read once per
 # block of observers (see :func:`_pack_sources`).
-Q_POS, Q_VEL, Q_ACC, Q_FRC, Q_FRD, Q_JERK, Q_M2, Q_FM, Q_TAU = 0, 3, 6, 9, 12, 15, 18, 19, 20
-N_Q = 21
+Q_POS, Q_VEL, Q_ACC, Q_FRC, Q_FRD, Q_JERK, Q_M2, Q_FM, Q_TAU, Q_FLUX, Q_FLUXD = 0, 3, 6, 9, 12, 15, 18, 19, 20, 21, 22
+N_Q = 23
 # Observers per block: every source row is loaded once per block and the per-observer inner loops
 # run over the block (contiguous, vectorisable); 16 was fastest on the benchmark (8: -10 %, 32: -20 %).
 OBSERVER_BLOCK = 16
@@ -207,13 +226,14 @@ def _monopole(s, r0, r1, r2, v0, v1, v2, a0, a1, a2, j0, j1, j2, m2, c0):
 
 
 @kernel
-def _emit(row, col, obs, n_b, tb, pa, pb, monopole, c0, rho0_vol):
+def _emit(row, col, obs, n_b, tb, pa, pb, monopole, surface, c0, rho0_vol):
     """Reception time and 4π × pressure of one source row at the n_b observers of a block.
 
     ``row``: packed source row (N_Q,); ``obs`` (7, block): the block's observers, rows x, y, z,
     vx, vy, vz (G) and 1/(c0² − v_o²). Compact F1A dipole (module docstring), written as
     W²/r · [ḟ_r/c0 + (f_r − f_M)/r + f_r W (Ṁ_r/c0 + (M_r − M²)/r)], W = 1/(1 − M_r);
-    with ``monopole`` also ρ0V × :func:`_monopole`. Results go to row ``col`` of tb, pa, pb
+    with ``monopole`` also ρ0V × :func:`_monopole` into pb; with ``surface`` the panel thickness term
+    W²/r · [Q̇ + Q W (Ṁ_r + c0 (M_r − M²)/r)] into pb. Results go to row ``col`` of tb, pa, pb
     (shape (n_ext, block)). Loops over observers on 1-D rows so that they vectorise.
     """
     y0, y1, y2 = row[Q_POS], row[Q_POS + 1], row[Q_POS + 2]
@@ -245,6 +265,16 @@ def _emit(row, col, obs, n_b, tb, pa, pb, monopole, c0, rho0_vol):
         for b in range(n_b):
             t, s, r0, r1, r2 = _reception(y0, y1, y2, ox[b], oy[b], oz[b], ovx[b], ovy[b], ovz[b], tau, c0, inv_a[b])
             pb_row[b] = rho0_vol * _monopole(s, r0, r1, r2, v0, v1, v2, a0, a1, a2, j0, j1, j2, m2, c0)
+    if surface:
+        q, qd = row[Q_FLUX], row[Q_FLUXD]
+        pb_row = pb[col]
+        for b in range(n_b):
+            t, s, r0, r1, r2 = _reception(y0, y1, y2, ox[b], oy[b], oz[b], ovx[b], ovy[b], ovz[b], tau, c0, inv_a[b])
+            inv_r = 1.0 / (c0 * s)
+            mr = (v0 * r0 + v1 * r1 + v2 * r2) * inv_r * inv_c
+            mdot_r = (a0 * r0 + a1 * r1 + a2 * r2) * inv_r * inv_c
+            w = 1.0 / (1.0 - mr)
+            pb_row[b] = w * w * inv_r * (qd + q * w * (mdot_r + c0 * (mr - m2) * inv_r))
 
 
 @kernel
@@ -393,10 +423,11 @@ def _fold_block(buf, out, o_first, n_b):
 
 
 @kernel(parallel=True)
-def _radiate_kernel(src, vol, gdip, gmono, n_groups, xo, vo, c0, rho0, t_first, dt, n_out, period):
+def _radiate_kernel(src, vol, surf, gdip, gmono, n_groups, xo, vo, c0, rho0, t_first, dt, n_out, period):
     """Pressure (Pa, shape (n_obs, n_groups, n_out)) of all nodes at every observer.
 
     ``src``: packed sources (n_node, n_tau, N_Q), see :func:`_pack_sources`; ``vol`` (n_node,) m³;
+    ``surf`` (n_node,) bool: the node carries a surface-panel mass flux;
     ``gdip``, ``gmono`` (n_node,) output group of each node's dipole / monopole part (−1: none);
     ``xo``, ``vo`` (n_obs, 3) observer position at t = 0 (m) and velocity (m/s), G; c0 (m/s), rho0 (kg/m³).
     period <= 0: direct mode, targets t_first + k·dt (s), F1A evaluated only on the source steps the window
@@ -433,7 +464,8 @@ def _radiate_kernel(src, vol, gdip, gmono, n_groups, xo, vo, c0, rho0, t_first, 
         hi = np.empty(OBSERVER_BLOCK, dtype=np.int64)
         for i in range(n_node):
             has_a = gdip[i] >= 0
-            has_b = gmono[i] >= 0 and vol[i] != 0.0
+            compact = vol[i] != 0.0
+            has_b = gmono[i] >= 0 and (compact or surf[i])
             if not has_a and not has_b:
                 continue
             ga = max(gdip[i], 0)
@@ -442,10 +474,10 @@ def _radiate_kernel(src, vol, gdip, gmono, n_groups, xo, vo, c0, rho0, t_first, 
                 # reception times first (cheap), then F1A only where some observer's window needs it
                 j_lo, j_hi = _direct_window(src[i], obs, n_b, c0, t_first, t_end, pad, tb, lo, hi)
                 for j in range(j_lo, j_hi):
-                    _emit(src[i, j], j, obs, n_b, tb, pa, pb, has_b, c0, rho0 * vol[i])
+                    _emit(src[i, j], j, obs, n_b, tb, pa, pb, has_b and compact, has_b and surf[i], c0, rho0 * vol[i])
             else:
                 for j in range(n_tau):
-                    _emit(src[i, j], j + pad, obs, n_b, tb, pa, pb, has_b, c0, rho0 * vol[i])
+                    _emit(src[i, j], j + pad, obs, n_b, tb, pa, pb, has_b and compact, has_b and surf[i], c0, rho0 * vol[i])
                 _periodic_extension(tb, pa, pb, n_tau, pad, n_b, period)
                 j_lo = 0
                 j_hi = n_ext
@@ -484,10 +516,10 @@ def _check_speeds(sources: CompactSources, observers: Observers, c0: float) -> N
 
 
 def _pack_sources(sources: CompactSources, c0: float, period: float):
-    """Kernel arguments: packed rows (n_node, n_tau, N_Q), volumes, group indices, group count.
+    """Kernel arguments: packed rows (n_node, n_tau, N_Q), volumes, surface-panel flags, group indices, group count.
 
-    A row holds y, v, a, f, ḟ, jerk (G), M² = |v|²/c0², f_M = f·v/c0 and the source time τ_j
-    (periodic sources: τ_0 + j·T/n_tau).
+    A row holds y, v, a, f, ḟ, jerk (G), M² = |v|²/c0², f_M = f·v/c0, the source time τ_j
+    (periodic sources: τ_0 + j·T/n_tau) and the mass flux Q and its rate (0 without).
     """
     n_node, n_tau = sources.position_m.shape[:2]
     src = np.empty((n_node, n_tau, N_Q))
@@ -499,9 +531,17 @@ def _pack_sources(sources: CompactSources, c0: float, period: float):
     src[:, :, Q_FM] = np.einsum("ijk,ijk->ij", src[:, :, Q_FRC:Q_FRC + 3], vel) / c0
     tau = np.asarray(sources.time_s, dtype=float)
     src[:, :, Q_TAU] = tau[0] + np.arange(n_tau) * (period / n_tau) if period > 0 else tau
+    if sources.mass_flux_kg_s is None:
+        src[:, :, Q_FLUX:Q_FLUXD + 1] = 0.0
+        surface = np.zeros(n_node, dtype=np.bool_)
+    else:
+        src[:, :, Q_FLUX] = sources.mass_flux_kg_s
+        src[:, :, Q_FLUXD] = sources.mass_flux_rate_kg_s2
+        surface = np.any(sources.mass_flux_kg_s != 0.0, axis=1) | np.any(sources.mass_flux_rate_kg_s2 != 0.0, axis=1)
     return (
         src,
         np.ascontiguousarray(sources.volume_m3, dtype=float),
+        surface,
         np.ascontiguousarray(sources.dipole_group, dtype=np.int64),
         np.ascontiguousarray(sources.monopole_group, dtype=np.int64),
         len(sources.groups),

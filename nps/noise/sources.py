@@ -233,6 +233,24 @@ def _ground_frame_lines(stack, motion: RotorMotion, steps: np.ndarray, blades: l
     return [np.ascontiguousarray(np.concatenate(a, axis=0)) for a in out]
 
 
+def blade_lines(disk: pd.DataFrame, motion: RotorMotion, thickness: ThicknessModel, hinge_offset_m: float,
+                rho0_kg_m3: float):
+    """Blade 0's source lines in the rotating frame at the table's rows: (disk arrays (:func:`disk_arrays`), lines,
+    air velocity in rotating components (n_rows, 1, 3) m/s). Each line is (position (n_rows, n_r, 3) in rotating
+    components (e_r, e_t, z_H), m; force on the fluid per node (n_rows, n_r, 3), N; group; volume (n_r,) m³): the
+    loading line, then the dual-compact thickness lines (front, rear) when the model has them. The rows are the
+    table's azimuths ψ_i = 2πi/N (over the revolutions of a common period)."""
+    arrays = disk_arrays(disk)
+    n_rows = arrays["r_m"].shape[0]
+    n_psi = n_rows // periods.table_revolutions(arrays["psi_rad"][:, 0])
+    omega = motion.omega_rad_s
+    if not omega > 0:
+        raise AcousticsError(f"trim row: omega_rad_s must be positive, got {omega}")
+    air_rot = _air_velocity_rotating(motion, n_rows, n_psi)
+    lines = _blade_components(arrays, thickness, hinge_offset_m, rho0_kg_m3, omega, air_rot, 2.0 * np.pi / n_psi)
+    return arrays, lines, air_rot
+
+
 def rotor_sources(disk: pd.DataFrame, motion: RotorMotion, *, thickness: ThicknessModel = ThicknessModel(),
                   hinge_offset_m: float = 0.0, rho0_kg_m3: float, c0_mps: float,
                   tau_range_s: tuple[float, float] | None = None, phase_rad: float = 0.0,
@@ -254,17 +272,13 @@ def rotor_sources(disk: pd.DataFrame, motion: RotorMotion, *, thickness: Thickne
     "Common period"): blade 0's loads over the period, blade k's those of row i + ``blade_shift_steps[k]``
     at row i (None: kN/B, the same revolution); periodic sources hold every blade over the period m 2π/Ω.
     """
-    arrays = disk_arrays(disk)
+    arrays, lines, air_rot = blade_lines(disk, motion, thickness, hinge_offset_m, rho0_kg_m3)
     n_rows, n_r = arrays["r_m"].shape
     revolutions = periods.table_revolutions(arrays["psi_rad"][:, 0])
     n_psi = n_rows // revolutions
     dpsi = 2.0 * np.pi / n_psi
     omega = motion.omega_rad_s
-    if not omega > 0:
-        raise AcousticsError(f"trim row: omega_rad_s must be positive, got {omega}")
     period = 2.0 * np.pi / omega
-    air_rot = _air_velocity_rotating(motion, n_rows, n_psi)
-    lines = _blade_components(arrays, thickness, hinge_offset_m, rho0_kg_m3, omega, air_rot, dpsi)
     stack, group_names, volume = _rotating_kinematics(lines, omega, dpsi, air_rot, c0_mps, n_r)
     n_blades = motion.n_blades
     symmetric = revolutions == 1 and blade_shift_steps is None

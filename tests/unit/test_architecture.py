@@ -15,7 +15,7 @@ MODULES = sorted(
 )
 # The layer of each top-level package (docs/reference/architecture.md): a module imports only from its own
 # package and from packages of a lower layer; packages of one layer know nothing of each other.
-LAYERS = {"core": 0, "rotor": 1, "wake": 2, "noise": 2, "mission": 3, "rig": 3, "app": 4, "plots": 5,
+LAYERS = {"core": 0, "rotor": 1, "wake": 2, "noise": 2, "mission": 3, "rig": 3, "app": 4, "wopwop": 4, "plots": 5,
           "stages": 6, "api": 7, "cli": 7, "__main__": 8}
 PHYSICS_PACKAGES = ("core", "rotor", "wake", "noise", "mission", "rig")
 MAX_FUNCTION_LINES = 80
