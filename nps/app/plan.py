@@ -145,7 +145,7 @@ def _footprint(case, obsset):
 
 
 PARAMS = {"trim": _trim, "loads": _loads, "wake": _wake, "observers": _observers, "acoustics": _acoustics,
-          "hsi": _hsi, "metrics": _metrics, "tones": _tones, "source_hemisphere": _source_hemisphere, "certification": _certification, "footprint": _footprint}
+          "wopwop_export": _acoustics, "hsi": _hsi, "metrics": _metrics, "tones": _tones, "source_hemisphere": _source_hemisphere, "certification": _certification, "footprint": _footprint}
 
 
 def metrics_reads_disks(settings: Mapping[str, Any]) -> bool:

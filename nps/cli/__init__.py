@@ -158,6 +158,17 @@ def fail(message: str) -> int:
     return 2
 
 
+def trim_rotors(path: str) -> list[str] | str:
+    """The rotor names of a trim artifact, in its order (a command without an aircraft file: a PSU-WOPWOP case's
+    rotors, nps.stages.wopwop_run); a one-line problem when it cannot be read."""
+    from nps.app.io import read_table
+
+    try:
+        return [str(name) for name in read_table(path, required=("rotor",), nonempty=True)["rotor"]]
+    except ValueError as error:
+        return str(error)
+
+
 def provenance(path: str, key: str) -> str:
     """The ``nps.<key>`` metadata of an input artifact (e.g. its segment), "" when absent or unreadable
     (the stage then reports the unreadable file itself)."""

@@ -10,14 +10,15 @@ none, or per rotor BPM outside Pegg's data range and Pegg inside (``--broadband 
 
 from __future__ import annotations
 
-from nps.cli import default, fail, option_problem, parser, provenance, run_stage
+from nps.cli import default, fail, option_problem, parser, provenance, run_stage, trim_rotors
 from nps.app.config import BROADBAND_MODELS, ConfigError, load_aircraft
 from nps.noise.metrics import rotor_solidities
 
 
 def main(argv: list[str]) -> int:
     ap = parser("metrics", __doc__, validity=True)
-    ap.add_argument("--aircraft", required=True, help="aircraft YAML (rotor solidities)")
+    ap.add_argument("--aircraft", help="aircraft YAML (rotor solidities); without it (a PSU-WOPWOP case's trim artifact) "
+                                       "the rotors are the trim artifact's and --broadband must be none")
     ap.add_argument("--trim", required=True, help="trim.parquet")
     ap.add_argument("--observers", required=True, help="observers/{obsset}.parquet")
     ap.add_argument("--signals", required=True, help="acoustics directory of the rotors' signals")
@@ -45,15 +46,24 @@ def main(argv: list[str]) -> int:
                               "--bvispl-harmonics": ("acoustics.bvispl_harmonics", args.bvispl_harmonics)})
     if problem:
         return fail(problem)
-    try:
-        aircraft = load_aircraft(args.aircraft)
-    except ConfigError as error:
-        return fail(str(error))
+    if not args.aircraft:
+        if args.broadband != "none":
+            return fail(f"--broadband {args.broadband} needs --aircraft (the rotors' solidities and sections); without an "
+                        "aircraft file use --broadband none")
+        names = trim_rotors(args.trim)
+        if isinstance(names, str):
+            return fail(names)
+        aircraft = {"name": provenance(args.trim, "aircraft"), "rotors": [{"name": n} for n in names]}
+    else:
+        try:
+            aircraft = load_aircraft(args.aircraft)
+        except ConfigError as error:
+            return fail(str(error))
     atmosphere = {"altitude_m": args.altitude_m, "isa_delta_K": args.isa_delta_k,
                   "relative_humidity_pct": args.relative_humidity_pct}
     names = args.rotor or [r["name"] for r in aircraft["rotors"]]
-    params = {"rotors": names, "solidity": rotor_solidities(aircraft),
-              "rotor_configs": {r["name"]: r for r in aircraft["rotors"]},
+    params = {"rotors": names, "solidity": rotor_solidities(aircraft) if args.aircraft else {},
+              "rotor_configs": {r["name"]: r for r in aircraft["rotors"]} if args.aircraft else {},
               "atmosphere": atmosphere, "broadband": args.broadband, "absorption": not args.no_absorption,
               "harmonics": args.bvispl_harmonics, "aircraft": aircraft["name"], "segment": provenance(args.trim, "segment"),
               "obsset": provenance(args.observers, "obsset"), "variant": provenance(f"{args.signals}/{names[0]}.parquet", "variant") or "base"}
@@ -61,4 +71,4 @@ def main(argv: list[str]) -> int:
               **({"disks": args.disks} if args.disks else {})}
     outputs = {"metrics": args.out, "bands": args.bands_out, **({"figure": args.figure} if args.figure else {})}
     return run_stage("metrics", inputs, outputs, params, args.debug,
-                     args.allow_outside_validity, sources={"--aircraft": args.aircraft})
+                     args.allow_outside_validity, sources={"--aircraft": args.aircraft} if args.aircraft else None)

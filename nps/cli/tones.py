@@ -8,14 +8,15 @@ observers are the ``--loudest`` ones (mean-square total pressure) and those list
 
 from __future__ import annotations
 
-from nps.cli import default, fail, option, parser, provenance, run_stage
+from nps.cli import default, fail, option, parser, provenance, run_stage, trim_rotors
 from nps.app.config import ConfigError, load_aircraft
 from nps.app.io import rotor_path
 
 
 def main(argv: list[str]) -> int:
     ap = parser("tones", __doc__)
-    ap.add_argument("--aircraft", required=True, help="aircraft YAML (rotor names and order; the first is the reference)")
+    ap.add_argument("--aircraft", help="aircraft YAML (rotor names and order; the first is the reference); default: "
+                                       "the rotors of the trim artifact, in its order (a PSU-WOPWOP case's)")
     ap.add_argument("--trim", required=True, help="trim.parquet")
     ap.add_argument("--signals", required=True, help="acoustics directory of the rotors' signals")
     ap.add_argument("--rotor", nargs="+", help="rotor names (default: every rotor of the aircraft)")
@@ -28,15 +29,21 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--csv", required=True, help="tone table CSV (selected observers)")
     ap.add_argument("--spectra-out", required=True, help="narrowband spectra Parquet (selected observers)")
     args = ap.parse_args(argv)
-    try:
-        aircraft = load_aircraft(args.aircraft)
-    except ConfigError as error:
-        return fail(str(error))
-    rotors = args.rotor or [r["name"] for r in aircraft["rotors"]]
+    if args.aircraft:
+        try:
+            aircraft = load_aircraft(args.aircraft)
+        except ConfigError as error:
+            return fail(str(error))
+        names, name = [r["name"] for r in aircraft["rotors"]], aircraft["name"]
+    else:
+        names, name = trim_rotors(args.trim), provenance(args.trim, "aircraft")
+        if isinstance(names, str):
+            return fail(names)
+    rotors = args.rotor or names
     first = str(rotor_path(args.signals, rotors[0]))  # its metadata names the observer set and the variant
     params = {"rotors": rotors, "harmonics": args.harmonics, "loudest": args.loudest, "observers": args.observer,
-              "aircraft": aircraft["name"], "segment": provenance(args.trim, "segment"),
+              "aircraft": name, "segment": provenance(args.trim, "segment"),
               "obsset": provenance(first, "obsset"), "variant": provenance(first, "variant") or "base"}
     outputs = {"tones": args.out, "tones_csv": args.csv, "spectra": args.spectra_out}
     return run_stage("tones", {"signals": args.signals, "trim": args.trim}, outputs, params, args.debug,
-                     sources={"--aircraft": args.aircraft})
+                     sources={"--aircraft": args.aircraft} if args.aircraft else None)

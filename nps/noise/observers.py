@@ -27,8 +27,9 @@ class ObserverError(ValueError):
 
 
 KINDS = ("point", "hemisphere", "sphere", "points_ahead", "ground_grid")
-# stages whose artifact is an observer table: the campaign observer sets and a rig's microphones (nps.rig.case)
-OBSERVER_STAGES = ("observers", "rig")
+# stages whose artifact is an observer table: the campaign observer sets, a rig's microphones (nps.rig.case) and
+# the observers of a PSU-WOPWOP case run by NPS
+OBSERVER_STAGES = ("observers", "rig", "wopwop_run", "wopwop_read")
 
 
 def _table(position_m: np.ndarray, velocity_mps, extra: Mapping[str, np.ndarray]) -> pd.DataFrame:

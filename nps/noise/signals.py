@@ -15,6 +15,9 @@ import pandas as pd
 
 SIGNAL_COLUMNS = ("observer", "group", "time_s", "p_Pa")
 TOTAL = "total"  # group holding the sum of the other groups
+SIGNAL_STAGES = ("acoustics", "wopwop_run", "wopwop_read")
+"""Stages that write pressure-signal tables: NPS's acoustics stage, a PSU-WOPWOP case run by NPS, PSU-WOPWOP's own outputs
+read by NPS (nps.stages.wopwop_read)."""
 TONE_SUMS = ("coherent", "incoherent")
 """How the rotors of an aircraft add (aircraft schema ``tone_sum``, docs/reference/tones.md): ``coherent``
 sums their pressures (phases locked), ``incoherent`` their mean-square spectra (phases not locked)."""

@@ -66,8 +66,9 @@ TRIM_COLUMNS = (
     "density_kg_m3", "speed_of_sound_mps", "pitch_rad", "roll_rad", "flight_path_rad", "trim_iterations",
 )
 
-# stages whose artifact is a trim table: the aircraft trim and the set-up of a rig (nps.rig.case)
-TRIM_STAGES = ("trim", "rig")
+# stages whose artifact is a trim table: the aircraft trim, the set-up of a rig (nps.rig.case) and a PSU-WOPWOP
+# case run by NPS (its rotors, nps.wopwop.rotors)
+TRIM_STAGES = ("trim", "rig", "wopwop_run", "wopwop_read")
 
 
 def trim_row(trim: pd.DataFrame, rotor: str, what: str = "trim.parquet") -> dict:

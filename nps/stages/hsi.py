@@ -24,7 +24,7 @@ from nps.noise.hsi import OBSERVER_COLUMNS, HsiIntermediate, process
 from nps.app.io import artifact_rows, check_provenance, read_signals, read_table, rotor_path, write_table
 from nps.noise.observers import OBSERVER_STAGES
 from nps.app.resources import check_memory, estimate_bytes
-from nps.noise.signals import check_observers
+from nps.noise.signals import SIGNAL_STAGES, check_observers
 from nps.rotor.trim import TRIM_COLUMNS, TRIM_STAGES, trim_row
 
 
@@ -51,7 +51,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     check_provenance(inputs["trim"], {"stage": TRIM_STAGES, **same})
     check_provenance(inputs["observers"], {"stage": OBSERVER_STAGES, "obsset": params["obsset"], **same})
     for name in rotors:
-        check_provenance(rotor_path(inputs["signals"], name), {"stage": "acoustics", "rotor": name, "obsset": params["obsset"],
+        check_provenance(rotor_path(inputs["signals"], name), {"stage": SIGNAL_STAGES, "rotor": name, "obsset": params["obsset"],
                                                                "variant": params["variant"], **same})
     trim = read_table(inputs["trim"], required=TRIM_COLUMNS, nonempty=True)
     observers = read_table(inputs["observers"], required=OBSERVER_COLUMNS, nonempty=True, finite=True, unique="observer")

@@ -43,7 +43,7 @@ from nps.app.io import artifact_rows, check_provenance, read_signals, read_table
 from nps.noise.metrics import STUDY_BANDS, metrics_tables
 from nps.noise.observers import OBSERVER_STAGES
 from nps.app.resources import check_memory, estimate_bytes
-from nps.noise.signals import TONE_SUMS, check_observers
+from nps.noise.signals import SIGNAL_STAGES, TONE_SUMS, check_observers
 from nps.rotor.trim import TRIM_STAGES, trim_row
 
 
@@ -93,7 +93,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     same = {"aircraft": params["aircraft"], "segment": params["segment"]}
     check_provenance(inputs["trim"], {"stage": TRIM_STAGES, **same})
     observer_meta = check_provenance(inputs["observers"], {"stage": OBSERVER_STAGES, "obsset": params["obsset"], **same})
-    signal_dirs = {"signals": "acoustics", **({"hsi": "hsi"} if "hsi" in inputs else {})}
+    signal_dirs = {"signals": SIGNAL_STAGES, **({"hsi": "hsi"} if "hsi" in inputs else {})}
     for key, stage in signal_dirs.items():
         for name in rotors:
             check_provenance(rotor_path(inputs[key], name), {"stage": stage, "rotor": name, "obsset": params["obsset"],

@@ -599,3 +599,61 @@ def band_filter(time_s, p_pa, high_pass_hz: float = 0.0, low_pass_hz: float = np
     spectrum[..., outside] = 0.0
     spectrum[..., 0] = 0.0
     return np.fft.irfft(spectrum, n=n, axis=-1)
+
+
+# ---------------------------------------------------------------- the files of a run
+
+
+def run_tables(environment, spec, shape: tuple[int, int], time_s, positions_m, pressure: Mapping[str, np.ndarray]
+               ) -> dict[str, OutputTable]:
+    """The output tables a PSU-WOPWOP run writes for one observer container, by the case's switches.
+
+    ``environment``: the case's :class:`nps.wopwop.case.Environment` (acousticPressureFlag, thicknessNoiseFlag,
+    loadingNoiseFlag, totalNoiseFlag, OASPLdBFlag, OASPLdBAFlag, spectrumFlag with narrowbandFlag); ``spec``: the
+    observer container (high- and low-pass frequencies, window, frequency ranges); ``time_s`` (nt,) its observer
+    times; ``positions_m`` (n_obs, nt, 3) the observers' positions (for the grid files); ``pressure``: "thickness" and
+    "loading" → (n_obs, nt) Pa. Returns file name → table: ``pressure``, ``OASPLdB``, ``OASPLdBA``, ``spl_spectrum``
+    and ``spl_<range title>`` (the range levels, dB and dBA). Sources: the switched-on ones of Thickness, Loading,
+    Total (no switch: Total, as WOPWOP's acousticPressureFlag does)."""
+    total = pressure["thickness"] + pressure["loading"]
+    by_source = {"Thickness": pressure["thickness"], "Loading": pressure["loading"], "Total": total}
+    chosen = [s for s, on in zip(SOURCES, (environment.thickness_noise, environment.loading_noise,
+                                           environment.total_noise)) if on] or ["Total"]
+    hpf, lpf, window = spec.high_pass_hz, spec.low_pass_hz, spec.window or None
+    tables: dict[str, OutputTable] = {}
+    if environment.acoustic_pressure:
+        columns = {s: band_filter(time_s, by_source[s], hpf, lpf) for s in chosen}
+        tables["pressure"] = output_table("pressure", time_s, columns, shape, positions_m)
+    levels = {s: oaspl(time_s, by_source[s], hpf, lpf, window) for s in chosen}
+    start = np.asarray([time_s[0]])
+    first = positions_m[:, :1]
+    for name, k, on in (("OASPLdB", 0, environment.oaspl_db), ("OASPLdBA", 1, environment.oaspl_dba)):
+        if on:
+            tables[name] = output_table(name, start, {s: levels[s][k][:, None] for s in chosen}, shape, first)
+    if environment.spectrum and environment.narrowband:
+        spectra = {s: spl_spectrum(time_s, by_source[s], hpf, lpf, window) for s in chosen}
+        frequency = spectra[chosen[0]][0]
+        columns = {f"{s}_{u}": spectra[s][1 + k] for s in chosen for k, u in enumerate(("dB", "dBA"))}
+        tables["spl_spectrum"] = output_table("spl_spectrum", frequency, columns, shape, None)
+    for title, low, high in spec.ranges:
+        band = {s: oaspl(time_s, by_source[s], hpf, lpf, window, band_hz=(low, high)) for s in chosen}
+        columns = {f"{s}_{u}": band[s][k][:, None] for s in chosen for k, u in enumerate(("dB", "dBA"))}
+        tables[f"spl_{title}"] = output_table("range", start, columns, shape, first)
+    return tables
+
+
+def write_run_tables(tables: Mapping[str, OutputTable], folder, ascii: bool) -> list[Path]:
+    """Write a run's tables into ``folder``: one observer as Tecplot ``NAME.tec``, several as PLOT3D
+    ``NAME.fn/.nam/.x`` (ASCII or binary as the case's ASCIIOutputFlag; the OASPL grid as ``OASPL.x``)."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    written = []
+    for name, table in tables.items():
+        if table.shape == (1, 1):
+            write_tec(folder / f"{name}.tec", table)
+            written.append(folder / f"{name}.tec")
+        else:
+            grid = folder / "OASPL.x" if name.startswith("OASPL") else None
+            write_plot3d(folder / name, table, ascii=ascii, grid_path=grid)
+            written.append(folder / f"{name}.fn")
+    return written

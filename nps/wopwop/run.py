@@ -83,28 +83,27 @@ class ObserverResult:
 
 
 # --------------------------------------------------------------------------- the container tree
-def source_containers(case: Case, read=None) -> tuple[SourceContainer, ...]:
-    """Every container with patch files, depth-first in file order, its patch files read (``read``: a function
-    path → (GeometryFile, FunctionalFile | None) for tests; default :func:`read_patch_pair`)."""
+def source_containers(case: Case) -> tuple[SourceContainer, ...]:
+    """Every container with patch files, depth-first in file order, its patch files read and paired
+    (:func:`read_patch_pair`); rotors named after their container's Title (made unique)."""
     out: list[SourceContainer] = []
-    read = read or read_patch_pair
     names: dict[str, int] = {}
     state = {"d_tau_s": None}
 
     def walk(container: Container, chain: tuple[CB, ...], rotor: str | None):
         chain = chain + tuple(container.cbs)
         state["d_tau_s"] = _effective_dtau(container, state["d_tau_s"])
-        if rotor is None and any(_spins(cb) for cb in container.cbs):
+        if rotor is None and any(spins(cb) for cb in container.cbs):
             rotor = _unique(container.title or "rotor", names)
         if container.geometry_files:
-            pairs = tuple(read(case, g, l) for g, l in zip(container.geometry_files, _loading_files(container)))
+            pairs = tuple(read_patch_pair(case, g, l) for g, l in zip(container.geometry_files, _loading_files(container)))
             out.append(SourceContainer(container.title, chain, rotor or top, pairs, state["d_tau_s"],
                                        float(container.periodic_key_offset or 0.0)))
         for child in container.children:
             walk(child, chain, rotor)
 
     for container in case.containers:
-        top = _unique(container.title or "sources", names) if not any(_spins(cb) for cb in container.cbs) else None
+        top = _unique(container.title or "sources", names) if not any(spins(cb) for cb in container.cbs) else None
         walk(container, (), None)
     if not out:
         raise WopwopError(f"{case.path}: no container holds a patchGeometryFile: nothing radiates")
@@ -126,7 +125,7 @@ def _effective_dtau(container: Container, carried: float | None) -> float | None
     return carried
 
 
-def _spins(cb: CB) -> bool:
+def spins(cb: CB) -> bool:
     """A CB that turns with time (a rotor's rotation): KnownFunction or Periodic angle with nonzero Omega."""
     return cb.angle_type in ("KnownFunction", "Periodic") and bool(cb.omega_rad_s)
 
@@ -219,7 +218,7 @@ def key_shift(container: SourceContainer, timing: Timing, keys: np.ndarray) -> i
 def chain_period(chain: tuple[CB, ...]) -> float | None:
     """The period (s) of a chain's turning CBs, 2π/|Omega| (None: nothing turns); refuses turning CBs of
     different speeds that are not whole multiples of the slowest (no common period NPS can use)."""
-    omegas = sorted({abs(float(cb.omega_rad_s)) for cb in chain if _spins(cb)})
+    omegas = sorted({abs(float(cb.omega_rad_s)) for cb in chain if spins(cb)})
     if not omegas:
         return None
     ratios = np.asarray(omegas) / omegas[0]
@@ -424,10 +423,11 @@ def radiate_pair(source: SourceContainer, pair: PatchFiles, observers: ObserverG
     return out, mode
 
 
-def run_case(case: Case, read=None) -> tuple[ObserverResult, ...]:
-    """Every observer container of ``case``: its pressures per source group (rotor), thickness and loading apart."""
+def run_case(case: Case, sources: tuple[SourceContainer, ...] | None = None) -> tuple[ObserverResult, ...]:
+    """Every observer container of ``case``: its pressures per source group (rotor), thickness and loading apart.
+    ``sources``: the case's :func:`source_containers` when already read."""
     rho0, c0 = float(case.environment.rho_kg_m3), float(case.environment.c_m_s)
-    sources = source_containers(case, read)
+    sources = source_containers(case) if sources is None else sources
     results = []
     for grid in observer_grids(case):
         pressure: dict[str, np.ndarray] = {}

@@ -166,6 +166,21 @@ def _compact_geometry(zone: binary.GeometryZone, xyz: np.ndarray, normals: np.nd
     return np.eye(zone.n_nodes), np.linalg.norm(normals, axis=-1)
 
 
+def zone_outline(zone: binary.GeometryZone) -> np.ndarray:
+    """Points (n, 3) of a zone's first key in its local frame that bound its extent: the nodes, and for a compact
+    zone the two ends of the line, each end node pushed outward by half its span length."""
+    xyz = np.asarray(zone.xyz[0], dtype=float)
+    if not is_compact(zone) or zone.n_nodes < 2:
+        return xyz
+    _, length = _compact_geometry(zone, xyz[None], np.asarray(zone.normals[:1], dtype=float), zone.n_nodes)
+    order = np.arange(zone.n_nodes) if zone.structured else _line_order(zone)
+    ends = []
+    for end, inner in ((order[0], order[1]), (order[-1], order[-2])):
+        direction = xyz[end] - xyz[inner]
+        ends.append(xyz[end] + 0.5 * length[0, end] * direction / np.linalg.norm(direction))
+    return np.vstack([xyz, ends])
+
+
 def _line_order(zone: binary.GeometryZone) -> np.ndarray:
     """Node order along an unstructured two-face compact zone (faces as PSU-WOPWOP's line segments)."""
     ids = np.unique(np.concatenate([np.asarray(f) for f in zone.faces]))
