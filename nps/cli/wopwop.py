@@ -75,7 +75,7 @@ def _export(argv: list[str]) -> int:
 
 def _read(argv: list[str]) -> int:
     ap = parser("wopwop read", __doc__)
-    ap.add_argument("outputs", help="folder of PSU-WOPWOP's output files of one observer container (pressure.tec or "
+    ap.add_argument("output_folder", metavar="OUTPUTS", help="folder of PSU-WOPWOP's output files of one observer container (pressure.tec or "
                                     "pressure.fn/.nam/.x; OASPLdB, OASPLdBA, spl_spectrum when present)")
     ap.add_argument("--case", required=True, help="the case they are of (folder holding cases.nam, a cases.nam or a "
                                                   "case file): its observers and rotors")
@@ -85,7 +85,7 @@ def _read(argv: list[str]) -> int:
     args = ap.parse_args(argv)
     params = {key: value for key, value in (("case_index", args.case_index), ("observer_container", args.observer_container))
               if value is not None}
-    return run_stage("wopwop_read", {"case": args.case, "outputs": args.outputs}, {"out_dir": args.out_dir}, params,
+    return run_stage("wopwop_read", {"case": args.case, "outputs": args.output_folder}, {"out_dir": args.out_dir}, params,
                      args.debug)
 
 

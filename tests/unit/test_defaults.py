@@ -20,6 +20,9 @@ REPO = Path(__file__).resolve().parents[2]
 SCANNED = sorted([*REPO.glob("nps/stages/*.py"), *REPO.glob("nps/cli/*.py"), *REPO.glob("nps/wake/*.py"),
                   *REPO.glob("workflow/rules/*.smk"), REPO / "Snakefile"])
 CLI_MODULES = sorted(m.name for m in pkgutil.iter_modules(nps.cli.__path__))
+# a command with subcommands (``nps wopwop run | export | read``) is checked per subcommand: "module subcommand"
+CLI_COMMANDS = sorted(f"{m} {sub}" if sub else m for m in CLI_MODULES
+                      for sub in (getattr(importlib.import_module(f"nps.cli.{m}"), "COMMANDS", None) or [None]))
 CLI_FILES = sorted(REPO.glob("nps/cli/*.py"))
 
 
@@ -90,14 +93,16 @@ class _Parsed(Exception):
         self.parser = parser
 
 
-def _parser_of(module: str, monkeypatch):
-    """The argument parser ``python -m nps <module>`` builds (caught at its parse_args)."""
+def _parser_of(command: str, monkeypatch):
+    """The argument parser ``python -m nps <command>`` builds (caught at its parse_args); ``command``: a module, or
+    "module subcommand"."""
     def capture(self, args=None, namespace=None):
         raise _Parsed(self)
 
+    module, *sub = command.split()
     monkeypatch.setattr(nps.cli._Parser, "parse_args", capture)
     with pytest.raises(_Parsed) as caught:
-        importlib.import_module(f"nps.cli.{module}").main([])
+        importlib.import_module(f"nps.cli.{module}").main(sub)
     return caught.value.parser
 
 
@@ -105,7 +110,7 @@ def _schema_default(field: str, schema: str = "config"):
     return FIELDS[schema][field].get("default")
 
 
-@pytest.mark.parametrize("module", CLI_MODULES)
+@pytest.mark.parametrize("module", CLI_COMMANDS)
 def test_every_command_option_of_a_schema_field_defaults_to_the_schema(module, monkeypatch):
     """(b) An option built for a schema field defaults to that field's default (None where the schema
     has none); an option whose name is that of one defaulted config field, too."""
