@@ -1,7 +1,8 @@
 # NPS study workflow: trim -> loads -> wake (+ BVI loads) -> acoustics -> hsi -> metrics -> figures.
 # `snakemake -j2 all` runs the campaign of config/config.yaml (or of `--configfile FILE`); `snakemake -j2 rigs`
 # the rigs of config/rigs/ (rig.smk); `snakemake -j2 study_NAME` the design study config/studies/NAME.yaml
-# (designs.smk); `snakemake --report report.html` builds the HTML report. Rules live in workflow/rules/, one file per stage.
+# (designs.smk); `snakemake -j2 wopwop` exports every case as a PSU-WOPWOP case (wopwop.smk); `snakemake --report
+# report.html` builds the HTML report. Rules live in workflow/rules/, one file per stage.
 import os
 import sys
 
@@ -60,3 +61,4 @@ include: "workflow/rules/footprint.smk"
 include: "workflow/rules/certification.smk"
 include: "workflow/rules/rig.smk"
 include: "workflow/rules/designs.smk"
+include: "workflow/rules/wopwop.smk"

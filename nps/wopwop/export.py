@@ -50,6 +50,7 @@ CASE_FILE = "case.nam"
 OUTPUT_FOLDER = "output/"
 LINE_NAMES = {0: "lifting_line", 1: "thickness_front", 2: "thickness_rear"}
 UNIT_NORMAL_BAND = (0.999, 1.001)  # PSU-WOPWOP treats a first normal of this length as a unit normal
+FILE_FLOAT = np.float32  # PSU-WOPWOP's files hold 4-byte reals (tests set float64 to check the export exactly)
 
 
 @dataclass(frozen=True)
@@ -81,20 +82,20 @@ def rotor_files(rotor: RotorCase, thickness: ThicknessModel, comment: str) -> tu
     flip = np.array([1.0, s, 1.0])
     positions = [q * flip for q, _, _, _ in lines]
     loads = [-(g * flip) / dr[None, :, None] for _, g, _, _ in lines]
-    varying = any(not np.array_equal(p.astype(np.float32), np.broadcast_to(p[:1], p.shape).astype(np.float32)) for p in positions)
-    keys = np.arange(n_rows + 1, dtype=np.float32)
-    period = np.float32(2.0 * np.pi * periods.table_revolutions(arrays["psi_rad"][:, 0]) / motion.omega_rad_s)
-    normals = np.zeros((1, dr.size, 3), dtype=np.float32)
+    varying = any(not np.array_equal(p.astype(FILE_FLOAT), np.broadcast_to(p[:1], p.shape).astype(FILE_FLOAT)) for p in positions)
+    keys = np.arange(n_rows + 1, dtype=FILE_FLOAT)
+    period = FILE_FLOAT(2.0 * np.pi * periods.table_revolutions(arrays["psi_rad"][:, 0]) / motion.omega_rad_s)
+    normals = np.zeros((1, dr.size, 3), dtype=FILE_FLOAT)
     normals[0, :, 2] = dr
     geometry_zones, data_zones = [], []
     for k, ((_, _, group, _), pos, load) in enumerate(zip(lines, positions, loads)):
         name = LINE_NAMES[k]
         steps = np.concatenate([pos, pos[:1]]) if varying else pos[:1]
         geometry_zones.append(binary.GeometryZone(name, True, 1, dr.size, (), dr.size, float(period) if varying else None,
-                                                  keys if varying else np.zeros(0, np.float32), steps.astype(np.float32),
+                                                  keys if varying else np.zeros(0, FILE_FLOAT), steps.astype(FILE_FLOAT),
                                                   np.repeat(normals, steps.shape[0], axis=0), None))
         data_zones.append(binary.FunctionalZone(k + 1, False, name, True, 1, dr.size, dr.size, float(period), keys,
-                                                np.concatenate([load, load[:1]]).astype(np.float32),
+                                                np.concatenate([load, load[:1]]).astype(FILE_FLOAT),
                                                 loading_output=2 if group == LOADING else 1))
     kind = binary.PERIODIC if varying else binary.CONSTANT
     geometry = binary.GeometryFile("m", comment, kind, False, tuple(geometry_zones))
@@ -105,17 +106,15 @@ def rotor_files(rotor: RotorCase, thickness: ThicknessModel, comment: str) -> tu
 
 
 def axis_angle(matrix: np.ndarray) -> tuple[np.ndarray, float]:
-    """(unit axis, angle in rad) of a proper rotation matrix: R = exp(angle [axis]×) (angle in [0, π])."""
-    angle = float(np.arccos(np.clip(0.5 * (np.trace(matrix) - 1.0), -1.0, 1.0)))
-    if angle < 1e-12:
+    """(unit axis, angle in rad, in [0, π]) of a proper rotation matrix: R = exp(angle [axis]×) (scipy's rotation
+    vector, robust near a half turn); no rotation gives the axis (0, 0, 1) and angle 0."""
+    from scipy.spatial.transform import Rotation
+
+    vector = Rotation.from_matrix(np.asarray(matrix, dtype=float)).as_rotvec()
+    angle = float(np.linalg.norm(vector))
+    if angle < 1e-15:
         return np.array([0.0, 0.0, 1.0]), 0.0
-    if np.pi - angle < 1e-6:  # half turn: the axis from the symmetric part
-        axis = np.sqrt(np.clip(0.5 * (np.diag(matrix) + 1.0), 0.0, None))
-        k = int(np.argmax(axis))
-        axis = 0.5 * (matrix[k] + matrix[:, k]) / axis[k]
-        return axis / np.linalg.norm(axis), angle
-    axis = np.array([matrix[2, 1] - matrix[1, 2], matrix[0, 2] - matrix[2, 0], matrix[1, 0] - matrix[0, 1]])
-    return axis / np.linalg.norm(axis), angle
+    return vector / angle, angle
 
 
 def _vec(values) -> tuple[float, float, float]:

@@ -370,8 +370,9 @@ def pair_points(source: SourceContainer, pair: PatchFiles, steps, tau, timing: T
     return out
 
 
-def _compact_sources(parts, tau, frame) -> CompactSources:
-    """The kernel's sources of a list of (PointSources, group): points along the node axis."""
+def _compact_sources(parts, tau, frame, copies: int = 1) -> CompactSources:
+    """The kernel's sources of a list of (PointSources, group): points along the node axis; ``copies`` identical
+    blades shifted by a period / copies on the periodic path."""
     kin = np.concatenate([p.kinematics for p, _ in parts], axis=2).transpose(2, 1, 0, 3)  # (n_point, n_tau, 4, 3)
     force = np.concatenate([p.force_N for p, _ in parts], axis=1).transpose(1, 0, 2)
     force_rate = np.concatenate([p.force_rate_N_s for p, _ in parts], axis=1).transpose(1, 0, 2)
@@ -386,7 +387,7 @@ def _compact_sources(parts, tau, frame) -> CompactSources:
     return CompactSources(np.asarray(tau, dtype=float), *(np.ascontiguousarray(kin[:, :, k]) for k in range(4)),
                           np.ascontiguousarray(force), np.ascontiguousarray(force_rate), np.zeros(kin.shape[0]), GROUPS,
                           dipole.astype(np.int64), monopole.astype(np.int64), period_s=period, frame_velocity_mps=velocity,
-                          copies=1, mass_flux_kg_s=np.ascontiguousarray(flux), mass_flux_rate_kg_s2=np.ascontiguousarray(flux_rate))
+                          copies=copies, mass_flux_kg_s=np.ascontiguousarray(flux), mass_flux_rate_kg_s2=np.ascontiguousarray(flux_rate))
 
 
 def _point_slice(sources: CompactSources, lo: int, hi: int) -> CompactSources:
@@ -399,17 +400,22 @@ def _point_slice(sources: CompactSources, lo: int, hi: int) -> CompactSources:
                           sources.mass_flux_kg_s[take], sources.mass_flux_rate_kg_s2[take])
 
 
-def radiate_pair(source: SourceContainer, pair: PatchFiles, observers: ObserverGrid, rho0: float, c0: float):
+def radiate_pair(source: SourceContainer, pair: PatchFiles, observers: ObserverGrid, rho0: float, c0: float,
+                 copies: int = 1):
     """Pressure (Pa, (n_obs, 2, nt): thickness, loading) of one patch pair at one observer container, and the path
-    taken ("periodic" or "direct"). Points are radiated in chunks of at most MAX_ROWS_PER_CALL source rows."""
+    taken ("periodic" or "direct"). ``copies``: on the periodic path, the number of identical blades this container
+    stands for (:func:`blade_copies`; 0: a copy, radiated with its reference). Points are radiated in chunks of at
+    most MAX_ROWS_PER_CALL source rows."""
     timing = pair_timing(pair)
     steps, tau, _, frame = _steps(source, pair, timing, observers, c0)
-    parts = pair_points(source, pair, steps, tau, timing, rho0)
     mode = "periodic" if frame is not None else "direct"
     out = np.zeros((len(observers.position_m), len(GROUPS), observers.grid.n_samples))
+    if frame is not None and copies == 0:
+        return out, "periodic (copy)"
+    parts = pair_points(source, pair, steps, tau, timing, rho0)
     if not parts:
         return out, mode
-    sources = _compact_sources(parts, tau, frame)
+    sources = _compact_sources(parts, tau, frame, max(copies, 1) if frame is not None else 1)
     obs = Observers(observers.position_m, observers.velocity_mps)
     n_point = sources.position_m.shape[0]
     per_call = max(1, MAX_ROWS_PER_CALL // tau.size)
@@ -432,10 +438,73 @@ def run_case(case: Case, sources: tuple[SourceContainer, ...] | None = None) -> 
     for grid in observer_grids(case):
         pressure: dict[str, np.ndarray] = {}
         modes: dict[str, str] = {}
-        for source in sources:
+        for source, copies in zip(sources, blade_copies(sources)):
             for pair in source.patches:
-                p, mode = radiate_pair(source, pair, grid, rho0, c0)
+                p, mode = radiate_pair(source, pair, grid, rho0, c0, copies)
                 pressure[source.rotor] = pressure.get(source.rotor, 0.0) + p
                 modes[f"{source.title}: {pair.geometry_path}"] = mode
         results.append(ObserverResult(grid, pressure, modes))
     return tuple(results)
+
+
+# --------------------------------------------------------------------------- identical blades
+def blade_copies(sources: tuple[SourceContainer, ...]) -> list[int]:
+    """Per source container: B for the first blade of a rotor whose B blade containers are copies of it shifted by
+    T/B (the periodic path radiates it once, summing the harmonics n·B times B, as NPS does for its own rotors),
+    0 for the other blades of such a rotor, 1 otherwise. Copies: the same patch files, the same chain but one
+    TimeIndependent rotation about the turning CB's axis (only such rotations between the two), blade b's angle
+    offset δ_b a whole number of T/B in time (δ_b/Omega), and periodic data over one turn whose
+    periodicKeyOffset rows follow the same time shift (constant data need nothing)."""
+    out = [1] * len(sources)
+    for rotor in dict.fromkeys(s.rotor for s in sources):
+        members = [k for k, s in enumerate(sources) if s.rotor == rotor]
+        if len(members) > 1 and _copies_of(sources[members[0]], [sources[k] for k in members]):
+            out[members[0]] = len(members)
+            for k in members[1:]:
+                out[k] = 0
+    return out
+
+
+def _copies_of(ref: SourceContainer, group: list[SourceContainer]) -> bool:
+    """Whether ``group`` (``ref`` first) are identical blades evenly spaced in time (:func:`blade_copies`)."""
+    paths = [[(p.geometry_path, p.functional_path) for p in s.patches] for s in group]
+    if any(p != paths[0] for p in paths) or any(len(s.chain) != len(ref.chain) for s in group):
+        return False
+    differ = sorted({j for s in group for j, (a, b) in enumerate(zip(s.chain, ref.chain)) if a != b})
+    spin_at = next((j for j, cb in enumerate(ref.chain) if spins(cb)), None)
+    if len(differ) != 1 or spin_at is None or differ[0] <= spin_at:
+        return False
+    spin, at = ref.chain[spin_at], differ[0]
+    axis = np.asarray(spin.axis_value, dtype=float) / np.linalg.norm(spin.axis_value)
+    if not all(_turn_about(cb, axis) for cb in ref.chain[spin_at + 1:at]) or not all(_turn_about(s.chain[at], axis) for s in group):
+        return False
+    period = 2.0 * np.pi / abs(spin.omega_rad_s)
+    leads = [((s.chain[at].angle_value - ref.chain[at].angle_value) / spin.omega_rad_s) % period for s in group]
+    n = len(group)
+    if not np.allclose(np.sort(leads), np.arange(n) * period / n, rtol=0.0, atol=1e-9 * period):
+        return False
+    return all(_keys_follow(ref, s, pair, lead / period, period) for s, lead in zip(group, leads) for pair in s.patches)
+
+
+def _turn_about(cb: CB, axis: np.ndarray) -> bool:
+    """A TimeIndependent rotation about ``axis`` without translation."""
+    if cb.angle_type != "TimeIndependent" or cb.translation_type is not None or cb.axis_value is None:
+        return False
+    own = np.asarray(cb.axis_value, dtype=float)
+    return bool(np.allclose(own / np.linalg.norm(own), axis, rtol=0.0, atol=1e-12))
+
+
+def _keys_follow(ref: SourceContainer, blade: SourceContainer, pair: PatchFiles, lead: float, period_s: float) -> bool:
+    """The blade's periodic data rows lead the reference's by the fraction ``lead`` of one turn, the data being
+    periodic over that turn (constant data: always)."""
+    timing = pair_timing(pair)
+    if timing.kind == "constant":
+        return True
+    if timing.kind != "periodic" or abs(timing.period_s - period_s) > PERIOD_RTOL * period_s:
+        return False
+    keys = next(z.keys for z in (*pair.geometry.zones, *(pair.functional.zones if pair.functional else ())) if np.asarray(z.keys).size)
+    rows = lead * timing.n_rows
+    if abs(rows - round(rows)) > 1e-6:
+        return False
+    shift = key_shift(blade, timing, keys) - key_shift(ref, timing, keys)
+    return (shift - round(rows)) % timing.n_rows == 0
