@@ -84,7 +84,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     sources = source_containers(case)
     results = run_case(case, sources=sources)
     trim = rotor_rows(sources, case.environment.rho_kg_m3, case.environment.c_m_s) if has_rotor(sources) else None
-    out_dir = Path(outputs["out_dir"])
+    out_dir = Path(outputs["out_dir"])  # written once every observer container's pressures are computed
     report = [f"{path}: {len(sources)} source container(s), {len(results)} observer container(s)"]
     for result in results:
         folder = out_dir if len(results) == 1 else out_dir / _folder_name(result.observers.title)

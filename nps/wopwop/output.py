@@ -644,16 +644,26 @@ def run_tables(environment, spec, shape: tuple[int, int], time_s, positions_m, p
 
 def write_run_tables(tables: Mapping[str, OutputTable], folder, ascii: bool) -> list[Path]:
     """Write a run's tables into ``folder``: one observer as Tecplot ``NAME.tec``, several as PLOT3D
-    ``NAME.fn/.nam/.x`` (ASCII or binary as the case's ASCIIOutputFlag; the OASPL grid as ``OASPL.x``)."""
+    ``NAME.fn/.nam/.x`` (ASCII or binary as the case's ASCIIOutputFlag; the OASPL grid as ``OASPL.x``). The files
+    are written into a temporary sibling folder and moved into place once all are complete."""
+    import os
+    import shutil
+    import tempfile
+
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    written = []
-    for name, table in tables.items():
-        if table.shape == (1, 1):
-            write_tec(folder / f"{name}.tec", table)
-            written.append(folder / f"{name}.tec")
-        else:
-            grid = folder / "OASPL.x" if name.startswith("OASPL") else None
-            write_plot3d(folder / name, table, ascii=ascii, grid_path=grid)
-            written.append(folder / f"{name}.fn")
+    work = Path(tempfile.mkdtemp(prefix=f".{folder.name}.", suffix=".tmp", dir=folder.parent))
+    try:
+        for name, table in tables.items():
+            if table.shape == (1, 1):
+                write_tec(work / f"{name}.tec", table)
+            else:
+                grid = work / "OASPL.x" if name.startswith("OASPL") else None
+                write_plot3d(work / name, table, ascii=ascii, grid_path=grid)
+        written = []
+        for path in sorted(work.iterdir()):
+            os.replace(path, folder / path.name)
+            written.append(folder / path.name)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
     return written
