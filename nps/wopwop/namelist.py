@@ -26,6 +26,8 @@ import re
 from dataclasses import dataclass, field
 from typing import Iterable, Union
 
+import numpy as np
+
 from nps.wopwop.errors import WopwopError
 
 Scalar = Union[str, bool, int, float]
@@ -260,7 +262,10 @@ def parse_namelist(text: str, path: str) -> tuple[Group, ...]:
 
 
 def format_value(value: Value) -> str:
-    """A value as namelist text that :func:`parse_namelist` reads back equal (floats with ``repr`` precision)."""
+    """A value as namelist text that :func:`parse_namelist` reads back equal (floats with ``repr`` precision);
+    numpy scalars are written as the Python scalars they equal."""
+    if isinstance(value, np.generic):
+        value = value.item()
     if isinstance(value, bool):
         return ".true." if value else ".false."
     if isinstance(value, int):

@@ -364,7 +364,11 @@ def pair_points(source: SourceContainer, pair: PatchFiles, steps, tau, timing: T
         data = data_of.get(number)
         if data is None and is_compact(zone):
             continue  # a lifting line without loading radiates nothing (compact zones have no thickness noise)
-        points = zone_sources(zone, data, pair.functional, geometry_rows, data_rows, motion, rho0)
+        try:
+            points = zone_sources(zone, data, pair.functional, geometry_rows, data_rows, motion, rho0)
+        except WopwopError as error:
+            files = pair.geometry_path if data is None else f"{pair.geometry_path}, {pair.functional_path}"
+            raise WopwopError(f"{files}: {error}") from None
         group = THICKNESS if data is not None and getattr(data, "loading_output", 2) == 1 else LOADING
         out.append((points, group))
     return out

@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from nps.wopwop.case import (CB, Box, Case, Container, Environment, ObserverSpec, Sphere, format_case,
@@ -45,9 +46,12 @@ $CB Title = "x!y" $end
 
 
 def test_namelist_round_trip_is_exact():
-    """format → parse gives equal values: floats to the last bit, quotes, bools, ints, lists with holes."""
+    """format → parse gives equal values: floats to the last bit, quotes, bools, ints, lists with holes, numpy
+    scalars (as the Python scalars they equal)."""
     groups = (Group("EnvironmentIn", {"a": 0.1 + 0.2, "b": 1e-300, "c": -7, "d": True, "e": "it's \"q\"",
-                                      "f": (1.5, -2, False, "s"), "g": 6.02214076e23, "h": -0.0}),
+                                      "f": (1.5, -2, False, "s"), "g": 6.02214076e23, "h": -0.0,
+                                      "i": np.float64(0.1) * 3, "j": np.int64(-4), "k": np.bool_(True),
+                                      "l": (np.float32(0.25), np.int32(3))}),
               Group("CB", {"files": (None, "b.dat", None, "d.dat"), "one": ("only",), "x": 123456789.123456789}))
     back = parse_namelist(format_namelist(groups), "rt.nam")
     assert [g.name for g in back] == ["environmentin", "cb"]

@@ -11,11 +11,14 @@ surface, 4π p_T = ∫ [ρ0 (v̇_n)/(r(1−M_r)²) + ρ0 v_n (r Ṁ_r + c0(M_r �
 in numpy. In hover a rigid blade has v_n = (Ω ẑ × y)·n constant in time, so the first term
 vanishes exactly. Panels: cosine-spaced chordwise strips on upper and lower surfaces × uniform
 spanwise strips; each panel's ∫ v_n dS is exact (Ω r dr [y_t(x_k+1) − y_t(x_k)] c) and placed
-at its centroid (midpoint quadrature of the surface integral). The tip and root faces have
-v_n = 0 in hover. Source-time dominant: one blade over one revolution, reception times in
-closed form (stationary observer), linear periodic interpolation onto the observer grid, the
-second blade added by the half-period shift. Its resolution (24 × 60 panels per side, 1024
-source steps) is within 0.7 % (peak) and 0.3 % (width) of 80 × 80 panels, 8192 steps.
+at its centroid (midpoint quadrature of the surface integral). The tip and root faces are left
+open: on them v_n = ∓Ω d (d the chord offset from the pitch axis), a net flux ∓ρ0 Ω ∫ d dA;
+closing them changes the signal by 0.67–0.95 % of peak-to-peak
+(tests/validation/test_wopwop_surface_thickness.py). Source-time dominant: one blade over one
+revolution, reception times in closed form (stationary observer), linear periodic interpolation
+onto the observer grid, the second blade added by the half-period shift. Its resolution (24 × 60
+panels per side, 1024 source steps) is within 0.7 % (peak) and 0.3 % (width) of 80 × 80 panels,
+8192 steps.
 
 Compared: negative peak pressure and pulse width (full width at half the negative peak).
 Tolerances: issue 5 acceptance, dual compact within 10 % of the full surface at M_tip 0.88 in

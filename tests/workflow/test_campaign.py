@@ -185,4 +185,31 @@ def test_report_opens_on_the_results_summary(campaign_dir):
     page = (campaign_dir / "report.html").read_text()
     front = json.loads(re.search(r"workflow_desc\s*=\s*(\".*?\");\s*\n", page, re.S).group(1))
     assert "NPS results summary" in front and "6 deg descent (BVI)" in front
+    assert "System Message" not in front and "ERROR/" not in result.stderr
     assert "showResultInfo('results/helicopter/seg3/figures/hotspot_bvi.png')" in front
+
+
+def test_wopwop_roundtrip_example_on_the_campaign(campaign_dir, tmp_path, capsys):
+    """The worked example examples/wopwop_roundtrip.py as its docstring runs it: the workflow exports the helicopter's
+    seg3 BVI case (target results/…/wopwop/hemisphere_bvi), the example runs it with ``nps wopwop run`` and compares
+    with the acoustics stage. Through PSU-WOPWOP's single-precision files the signals agree to ≤ 1e-5 of
+    peak-to-peak (the float32 floor of tests/validation/test_wopwop_export_run.py; measured on the bundled
+    campaign ≤ 3.8e-6)."""
+    import importlib.util
+    import shutil
+
+    case = "results/helicopter/seg3/wopwop/hemisphere_bvi"
+    result = _snakemake(campaign_dir, "-j1", case)
+    assert result.returncode == 0, result.stderr[-2000:]
+    base = tmp_path / "helicopter" / "seg3"  # a copy: the run's outputs stay out of the campaign's results
+    for folder in ("wopwop", "acoustics"):
+        shutil.copytree(campaign_dir / "results/helicopter/seg3" / folder / "hemisphere_bvi", base / folder / "hemisphere_bvi")
+    spec = importlib.util.spec_from_file_location("wopwop_roundtrip", REPO / "examples" / "wopwop_roundtrip.py")
+    example = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(example)
+    table = example.main([str(base), "hemisphere_bvi"])
+    assert sorted(set(table["rotor"])) == ["main", "tail"]
+    assert (table["peak_to_peak_pa"] > 0.0).all()
+    assert (table["max_error_over_p2p"] < 1e-5).all(), table
+    assert "max_error_over_p2p" in capsys.readouterr().out
+    assert (base / "wopwop_run" / "hemisphere_bvi" / "nps" / "signals" / "main.parquet").is_file()
