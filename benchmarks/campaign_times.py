@@ -2,9 +2,10 @@
 
 Reads ``results/benchmarks/<rule>/**/*.tsv`` (one file per job, column ``s`` = wall seconds of the
 job, ``cpu_time``, ``max_rss`` in MB) and the last line of each job log ``results/logs/<rule>/**/*.log``
-(``timing: start-up S s, work W s``, written by nps.stages.job) and prints per rule: jobs, summed
-job wall time, mean and largest job, mean start-up (process start to the stage function imported)
-and mean work (the stage function), largest resident memory. The campaign's elapsed time is about
+(``timing: start-up S s, work W s[, numba import N s]``, written by nps.stages.job) and prints per rule: jobs,
+summed job wall time, mean and largest job, mean start-up (process start to the stage function imported),
+mean work (the stage function) and mean numba import within the work (jobs that ran a kernel; numba is
+imported by the first kernel call), largest resident memory. The campaign's elapsed time is about
 the summed job time divided by the number of parallel jobs (``-j``) plus Snakemake's own scheduling.
 
     python benchmarks/campaign_times.py [results]
@@ -19,14 +20,17 @@ import pandas as pd
 
 
 def log_timings(log_dir: Path) -> pd.DataFrame:
-    """Per job (rule, start_up_s, work_s) from the ``timing:`` line of its log."""
+    """Per job (rule, start_up_s, work_s, numba_s) from the ``timing:`` line of its log (numba_s: 0 for a job that
+    imported no numba, or a log written before the numba import was reported)."""
     rows = []
     for path in sorted(log_dir.rglob("*.log")):
         lines = path.read_text().splitlines()
         if lines and lines[-1].startswith("timing: start-up "):
             words = lines[-1].split()
-            rows.append({"rule": path.relative_to(log_dir).parts[0], "start_up_s": float(words[2]), "work_s": float(words[5])})
-    return pd.DataFrame(rows, columns=["rule", "start_up_s", "work_s"])
+            numba_s = float(words[9]) if len(words) > 9 and words[7:9] == ["numba", "import"] else 0.0
+            rows.append({"rule": path.relative_to(log_dir).parts[0], "start_up_s": float(words[2]), "work_s": float(words[5]),
+                         "numba_s": numba_s})
+    return pd.DataFrame(rows, columns=["rule", "start_up_s", "work_s", "numba_s"])
 
 
 def stage_table(results: Path) -> pd.DataFrame:
@@ -41,7 +45,8 @@ def stage_table(results: Path) -> pd.DataFrame:
     jobs = pd.DataFrame(rows)
     table = jobs.groupby("rule").agg(jobs=("s", "size"), total_s=("s", "sum"), mean_s=("s", "mean"),
                                      max_s=("s", "max"), cpu_s=("cpu_s", "sum"), max_rss_mb=("max_rss_mb", "max"))
-    timings = log_timings(results / "logs").groupby("rule").agg(start_up_s=("start_up_s", "mean"), work_s=("work_s", "mean"))
+    timings = log_timings(results / "logs").groupby("rule").agg(start_up_s=("start_up_s", "mean"), work_s=("work_s", "mean"),
+                                                                 numba_s=("numba_s", "mean"))
     return table.join(timings).sort_values("total_s", ascending=False)
 
 

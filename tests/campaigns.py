@@ -1,4 +1,13 @@
-"""The tiny campaign of the end-to-end tests: two aircraft, two segments, coarse resolution."""
+"""The tiny campaign of the end-to-end tests: two aircraft, two segments, coarse resolution; and how the tests run
+a campaign through the repository's Snakefile (:func:`campaign_workdir`, :func:`snakemake`)."""
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
 
 TINY = {
     # 2 wake revolutions are short of the ~2.5 the seg3 descent needs (docs/reference/validity.md): run with the
@@ -22,8 +31,6 @@ TINY = {
 def tiny_manifest():
     """The committed content digests of the tiny campaign for this machine's CPU class (nps.app.digests):
     bit-identity holds within a class; a class without a manifest skips, naming how to make one."""
-    from pathlib import Path
-
     import pytest
 
     from nps.app.digests import cpu_class, manifest_path
@@ -33,3 +40,33 @@ def tiny_manifest():
         pytest.skip(f"no tiny-campaign manifest for CPU class {cpu_class()}: make {path.name} with "
                     "`python -m nps.app.digests RESULTS_DIR` from the tiny campaign of the code before a change")
     return path
+
+
+def campaign_workdir(workdir: Path, config: dict) -> Path:
+    """``workdir`` with a copy of the repository's config/ whose config.yaml is ``config``: a campaign the
+    Snakefile runs in ``workdir`` (:func:`snakemake`)."""
+    import yaml
+
+    shutil.copytree(REPO / "config", workdir / "config")
+    (workdir / "config" / "config.yaml").write_text(yaml.safe_dump(config, sort_keys=False))
+    return workdir
+
+
+def _environment() -> dict:
+    return dict(os.environ, NUMBA_CACHE_DIR=str(REPO / ".numba_cache"))
+
+
+def snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
+    """``snakemake`` of the repository's Snakefile in ``workdir`` (``-d``; the repository's numba cache), output
+    captured."""
+    command = [sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(workdir), *args]
+    return subprocess.run(command, capture_output=True, text=True, env=_environment(), timeout=1200)
+
+
+def nps_command(workdir: Path, *args: str) -> subprocess.CompletedProcess:
+    """``python -m nps ARGS`` of the repository's package run in ``workdir`` (the repository's numba cache), output
+    captured."""
+    env = _environment()
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, (str(REPO), env.get("PYTHONPATH"))))
+    return subprocess.run([sys.executable, "-m", "nps", *args], cwd=workdir, capture_output=True, text=True, env=env,
+                          timeout=1200)

@@ -8,6 +8,7 @@ from pathlib import Path
 import pandas as pd
 
 from nps.api.case import DEFAULT_CACHE
+from nps.app.config import ConfigError
 from nps.app.designs import DesignStudy, load_study
 from nps.app.trade import refused_table, trade_tables
 from nps.stages.case import REFUSALS, StageCache, design_rows
@@ -40,22 +41,39 @@ class Study:
         ``resolution`` overrides fields of the variants' resolution, :func:`nps.app.designs.load_study`)."""
         return cls(load_study(path, root, resolution), cache_dir)
 
+    def describe(self) -> str:
+        """The study file, its size (designs × aircraft × segments) and estimated cost, in one line."""
+        return self.study.describe()
+
     @property
     def designs(self) -> pd.DataFrame:
         """One row per variant: id and variable values."""
         return pd.DataFrame([{"design": d.id, **d.values} for d in self.study.designs])
 
-    def run(self, segments: list[str] | None = None) -> StudyResult:
-        """Run every design × aircraft over the study's segments (``segments``: a subset) with the study's
-        products, as the workflow's case jobs do (:func:`nps.stages.case.design_rows`), and make the trade
-        tables; designs the validity envelope or a trim refuses are in ``refused``."""
+    def _segments(self, segments: list[str] | str | None) -> list[str]:
+        """The segments to run: the study's, or the subset ``segments`` (a name or a list of names)."""
+        if segments is None:
+            return self.study.segments
+        chosen = [segments] if isinstance(segments, str) else list(segments)
+        unknown = [s for s in chosen if s not in self.study.segments]
+        if unknown or not chosen or len(set(chosen)) < len(chosen):
+            got = f"got {unknown}" if unknown else ("got none" if not chosen else "got one twice")
+            raise ConfigError(f"{self.study.file}: Study.run(segments={segments!r}): expected one or more of the study's "
+                              f"segments {self.study.segments}, each once; {got}")
+        return chosen
+
+    def run(self, segments: list[str] | str | None = None) -> StudyResult:
+        """Run every design × aircraft over the study's segments (``segments``: a subset, a name or a list of
+        names) with the study's products, as the workflow's case jobs do (:func:`nps.stages.case.design_rows`),
+        and make the trade tables; designs the validity envelope or a trim refuses are in ``refused``."""
         spec, rows, refused = self.study.spec, [], []
+        segments = self._segments(segments)
         cache = StageCache(self.cache_dir)
         for design in self.study.designs:
             values = {"design": design.id, **design.values}
             for aircraft in self.study.aircraft:
                 try:
-                    table, _, _ = design_rows(design.campaign, aircraft, segments or self.study.segments, values,
+                    table, _, _ = design_rows(design.campaign, aircraft, segments, values,
                                               spec["observer_sets"], spec["products"], cache)
                 except REFUSALS as error:
                     refused.append((values, aircraft, str(error)))

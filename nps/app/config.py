@@ -14,11 +14,14 @@ import functools
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Iterator, Mapping
+from typing import Any, Iterable, Iterator, Mapping, Sequence
 
 import jsonschema
 import yaml
 
+# the broadband model choice (nps.app.broadband, which the metrics, source-hemisphere and summary jobs import
+# without this module), importable from here as well
+from nps.app.broadband import BROADBAND_AUTO, BROADBAND_MODELS, broadband_model, rotor_broadband_models  # noqa: F401
 from nps.rotor.airfoils import AirfoilError
 from nps.rotor.blade import BladeError
 from nps.rotor.geometry import RotorGeometry
@@ -107,10 +110,15 @@ def _non_finite(node: Any, path: list) -> Iterator[tuple[str, str]]:
             yield from _non_finite(value, path + [index])
 
 
-def _raise(file: str | Path, problems: list[tuple[str, str]]) -> None:
-    if problems:
-        lines = [f"{file}: {field}: {what}" for field, what in sorted(set(problems))]
+def raise_problems(problems: Iterable[tuple[str | Path, str, str]]) -> None:
+    """Raise :class:`ConfigError` with one line per (file, field, expectation), if there is any."""
+    lines = [f"{file}: {field}: {what}" for file, field, what in sorted({(str(f), a, b) for f, a, b in problems})]
+    if lines:
         raise ConfigError(lines[0] if len(lines) == 1 else f"{len(lines)} problems:\n  " + "\n  ".join(lines))
+
+
+def _raise(file: str | Path, problems: list[tuple[str, str]]) -> None:
+    raise_problems((file, field, what) for field, what in problems)
 
 
 @functools.lru_cache(maxsize=None)
@@ -171,11 +179,44 @@ def fill_defaults(data: Any, schema: dict, root: dict | None = None) -> Any:
     return copy.deepcopy(data)
 
 
+def _sections(node: dict, root: dict) -> dict:
+    """Every object with named fields of a schema node, nested and empty (what :func:`fill_defaults` fills)."""
+    node = resolve_ref(node, root)
+    return {key: _sections(sub, root) for key, sub in node.get("properties", {}).items()
+            if "properties" in resolve_ref(sub, root)}
+
+
+def schema_defaults(schema_name: str) -> dict:
+    """Every default a schema declares, in its place (:func:`fill_defaults` of every section and sub-section present
+    and empty); a field without a default is absent. For ``config``: what the per-stage commands plan their jobs
+    from, their options written in (nps.cli.settings)."""
+    schema = load_schema(schema_name)
+    return fill_defaults(_sections(schema, schema), schema)
+
+
 def field_problem(schema_name: str, field: str, value: Any) -> str | None:
     """What is wrong with ``value`` for the dotted schema field (e.g. ``atmosphere.isa_delta_K``), or None."""
     node = load_schema(schema_name)
     for part in field.split("."):
         node = node["properties"][part]
+    return value_problem(node, value, field)
+
+
+def schema_node(schema_name: str, parts: Sequence[str | int]) -> dict | None:
+    """The schema of one field of a document: ``parts`` are keys (a property, else the additional properties)
+    and list indices (the items), local ``$ref`` resolved; None where the schema does not describe it."""
+    root = load_schema(schema_name)
+    node = root
+    for part in parts:
+        node = resolve_ref(node, root)
+        node = node.get("items") if isinstance(part, int) else node.get("properties", {}).get(part, node.get("additionalProperties"))
+        if not isinstance(node, dict):
+            return None
+    return {**resolve_ref(node, root), "$defs": root.get("$defs", {})}
+
+
+def value_problem(node: dict, value: Any, field: str = "") -> str | None:
+    """What is wrong with ``value`` for the schema ``node`` of a field (:func:`schema_node`), or None."""
     problems = [what for _, what in _non_finite(value, [])]
     problems += [what for _, what in _schema_problems(jsonschema.Draft202012Validator(node), value)]
     return problems[0] if problems else ordering_problem(field, value)
@@ -198,13 +239,16 @@ def ordering_problem(field: str, value: Any) -> str | None:
 def validate(data: Any, schema_name: str | dict, file: str | Path) -> dict:
     """Validate ``data`` against a schema (a name under ``nps/app/schemas/`` or the schema itself);
     raise :class:`ConfigError` listing every problem."""
-    if not isinstance(data, dict):
-        _raise(file, [("<top level>", f"expected a mapping, got {type(data).__name__}")])
-    problems = list(_non_finite(data, []))
-    validator = jsonschema.Draft202012Validator(load_schema(schema_name) if isinstance(schema_name, str) else schema_name)
-    problems += _schema_problems(validator, data)
-    _raise(file, problems)
+    _raise(file, schema_problems(data, schema_name))
     return data
+
+
+def schema_problems(data: Any, schema_name: str | dict) -> list[tuple[str, str]]:
+    """(field, expectation) of every way ``data`` breaks a schema (a name under ``nps/app/schemas/`` or the schema)."""
+    if not isinstance(data, dict):
+        return [("<top level>", f"expected a mapping, got {type(data).__name__}")]
+    validator = jsonschema.Draft202012Validator(load_schema(schema_name) if isinstance(schema_name, str) else schema_name)
+    return list(_non_finite(data, [])) + _schema_problems(validator, data)
 
 
 class _UniqueKeyLoader(yaml.SafeLoader):
@@ -264,9 +308,8 @@ def load_aircraft(path: str | Path, document: Any = None) -> dict:
             problems.append((f"{where}.root_cutout_m", f"expected < radius_m ({rotor['radius_m']}), got {rotor['root_cutout_m']}"))
         if rotor["hinge_offset_m"] >= rotor["radius_m"]:
             problems.append((f"{where}.hinge_offset_m", f"expected < radius_m ({rotor['radius_m']})"))
-        if math.hypot(*rotor["thrust_axis_body"]) < 1e-9:
-            problems.append((f"{where}.thrust_axis_body", "expected a non-zero vector"))
-        elif rotor["role"] == "lift" and rotor["thrust_axis_body"][2] <= 0.0:
+        lift_axis = rotor["thrust_axis_body"]  # a zero axis: _rotor_sections
+        if rotor["role"] == "lift" and lift_axis[2] <= 0.0 and math.hypot(*lift_axis) >= AXIS_MIN_LENGTH:
             problems.append((f"{where}.thrust_axis_body", "expected a lift rotor's thrust axis pointing up (z > 0 in the body "
                                                           f"frame: x forward, y port, z up), got {rotor['thrust_axis_body']}"))
         problems += _rotor_sections(rotor, where, Path(path).parent)
@@ -459,14 +502,26 @@ def load_observer_sets(path: str | Path) -> dict:
     return fill_defaults(data["observer_sets"], node)
 
 
+# length below which a thrust axis has no direction (NPS normalises the axes it is given)
+AXIS_MIN_LENGTH = 1e-9
+
+
+def axis_problems(vector, field: str) -> list[tuple[str, str]]:
+    """(field, problem) when the thrust axis ``vector`` as written has no direction (a zero vector): refused
+    before any computation normalises it."""
+    if math.hypot(*vector) >= AXIS_MIN_LENGTH:
+        return []
+    return [(field, f"expected a non-zero vector (the thrust direction; NPS normalises it), got {list(vector)}")]
+
+
 def _rotor_sections(rotor: dict, where: str, base: Path) -> list[tuple[str, str]]:
-    """Cross checks of one rotor's blade and airfoil tables and control fields.
+    """Cross checks of one rotor's thrust axis, blade and airfoil tables and control fields.
 
     Table paths are resolved against ``base`` (the aircraft file's directory) and replaced by
     absolute paths in ``rotor``; the tables are then read once so that a malformed file or an
     unknown airfoil name stops here, before any computation.
     """
-    problems = []
+    problems = axis_problems(rotor["thrust_axis_body"], f"{where}.thrust_axis_body") if "thrust_axis_body" in rotor else []
     if "blade" in rotor:
         for key in ("chord_m", "twist_deg", "thickness_ratio"):
             if key in rotor:
@@ -533,34 +588,6 @@ def load_mission(path: str | Path, document: Any = None) -> dict:
                 problems.append((f"segments[{index}].aircraft.{aircraft}", "vertical flight without forward speed is not supported"))
     _raise(path, problems)
     return data
-
-
-BROADBAND_MODELS = ("pegg", "bpm", "none", "auto")
-
-
-def broadband_model(value) -> str:
-    """The broadband model named by a ``models.broadband`` value: ``pegg``, ``bpm``, ``none`` or ``auto`` (per
-    rotor, :func:`rotor_broadband_models`); the boolean spelling of earlier configurations maps true → ``pegg``, false → ``none``."""
-    if value is True or value is False:
-        return "pegg" if value else "none"
-    if value not in BROADBAND_MODELS:
-        raise ValueError(f"models.broadband: expected one of {list(BROADBAND_MODELS)} (or true/false), got {value!r}")
-    return str(value)
-
-
-BROADBAND_AUTO = "auto"  # per rotor: BPM outside Pegg's data range, Pegg inside (docs/decisions, broadband auto)
-
-
-def rotor_broadband_models(value, trim, rotors) -> dict[str, str]:
-    """Rotor → broadband model (``pegg``, ``bpm``, ``none``) of one aircraft in one segment: the model
-    ``value`` names (:func:`broadband_model`) for every rotor, or for ``auto`` (:data:`BROADBAND_AUTO`)
-    BPM for each rotor of the trim table ``trim`` outside Pegg's data range
-    (:func:`nps.app.validity.pegg_range_notes`) and Pegg for the others."""
-    if value != BROADBAND_AUTO:
-        return {name: broadband_model(value) for name in rotors}
-    from nps.app.validity import pegg_range_notes
-
-    return {name: "bpm" if pegg_range_notes(trim, [name]) else "pegg" for name in rotors}
 
 
 @dataclass(frozen=True)
@@ -708,15 +735,16 @@ def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", 
     problems += _footprint_problems(config, mission, all_ids)
     _raise(config_file, problems)
     _raise(config_file, campaign_memory_problems(config, aircraft))
+    _raise(config_file, _azimuth_grid_problems(config["resolution"]["n_psi"], {name: a["rotors"] for name, a in aircraft.items()}))
     for index, segment in enumerate(mission["segments"]):
         if segment["id"] not in segments:
             continue
-        for name in aircraft:
+        for name in aircraft:  # aircraft the mission lists and the campaign does not are not run
             if name not in segment["aircraft"]:
-                problems.append((f"segments[{index}].aircraft", f"expected speeds for aircraft '{name}' of the campaign"))
+                close = difflib.get_close_matches(name, list(segment["aircraft"]), n=1, cutoff=0.75)
+                hint = f" (did you mean '{close[0]}'?)" if close else ""
+                problems.append((f"segments[{index}].aircraft", f"expected speeds for aircraft '{name}' of the campaign{hint}"))
         for name, speeds in segment["aircraft"].items():
-            if name not in aircraft and not (config_dir / "aircraft" / f"{name}.yaml").exists():
-                problems.append((f"segments[{index}].aircraft.{name}", "names an aircraft that does not exist"))
             rotor_names = [r["name"] for r in aircraft[name]["rotors"]] if name in aircraft else None
             for rotor in speeds.get("rotor_omega_scale", {}):
                 if rotor_names is not None and rotor not in rotor_names:
@@ -726,6 +754,23 @@ def load_campaign(config: dict, config_file: str | Path = "config/config.yaml", 
                     ))
     _raise(mission_path, problems)
     return Campaign(config=config, aircraft=aircraft, mission=mission, segments=list(segments), written=written)
+
+
+def azimuth_grid_problem(n_psi: int, rotor: Mapping, owner: str) -> str | None:
+    """Why ``n_psi`` azimuth steps per revolution cannot carry the blades of ``rotor`` (of ``owner``, e.g. an
+    aircraft), or None: blade b sits at ψ + 2π b/N on the azimuth grid (nps.noise.sources), so n_psi must be a
+    multiple of the blade count N."""
+    blades = int(rotor["n_blades"])
+    if n_psi % blades == 0:
+        return None
+    return (f"{n_psi} azimuth steps per revolution, expected a multiple of {blades} (each of the {blades} blades of "
+            f"{owner} rotor '{rotor['name']}' sits on the azimuth grid)")
+
+
+def _azimuth_grid_problems(n_psi: int, rotors: dict[str, list[dict]]) -> list[tuple[str, str]]:
+    """``resolution.n_psi`` against every rotor (owner → rotors): :func:`azimuth_grid_problem`."""
+    problems = (azimuth_grid_problem(n_psi, rotor, owner) for owner, listed in rotors.items() for rotor in listed)
+    return [("resolution.n_psi", what) for what in problems if what]
 
 
 def campaign_memory_problems(config: dict, aircraft: dict[str, dict]) -> list[tuple[str, str]]:
@@ -816,7 +861,8 @@ def _rig_control_problems(rotor: dict, condition: dict, where: str) -> list[tupl
 
 def _rig_form_problems(raw: Any) -> list[tuple[str, str]]:
     """The one-rotor (``rotor``) or several-rotor (``rotors``) form of a rig document as written: exactly one of
-    the two, and with ``rotors`` no per-rotor field in ``condition``."""
+    the two, with ``rotors`` no per-rotor field in ``condition``, and each rotor's axis given one way (its
+    ``thrust_axis_T`` or its angles, which the defaults fill in)."""
     from nps.rig.case import ENTRY_CONDITION_FIELDS
 
     if not isinstance(raw, dict):
@@ -824,11 +870,16 @@ def _rig_form_problems(raw: Any) -> list[tuple[str, str]]:
     if ("rotor" in raw) == ("rotors" in raw):
         return [("rotor, rotors", "expected exactly one of rotor (one rotor) and rotors (several), got "
                  + ("both" if "rotor" in raw else "neither"))]
+    entries = raw["rotors"] if isinstance(raw.get("rotors"), list) else []
+    problems = [(f"rotors[{i}].thrust_axis_T", f"given with {' and '.join(angles)}: expected the axis one way, "
+                 "thrust_axis_T or the angles shaft_angle_deg and lateral_angle_deg (thrust_axis_T would override them)")
+                for i, entry in enumerate(entries) if isinstance(entry, dict) and "thrust_axis_T" in entry
+                for angles in [[key for key in ("shaft_angle_deg", "lateral_angle_deg") if key in entry]] if angles]
     condition = raw.get("condition")
-    if "rotors" not in raw or not isinstance(condition, dict):
-        return []
-    return [(f"condition.{key}", f"with rotors, each rotor gives its own {key} (rotors[i].{key}); the condition "
-             "holds only the common tunnel_speed_mps and atmosphere") for key in ENTRY_CONDITION_FIELDS if key in condition]
+    if "rotors" in raw and isinstance(condition, dict):
+        problems += [(f"condition.{key}", f"with rotors, each rotor gives its own {key} (rotors[i].{key}); the condition "
+                      "holds only the common tunnel_speed_mps and atmosphere") for key in ENTRY_CONDITION_FIELDS if key in condition]
+    return problems
 
 
 def _rig_rotors(data: dict, path: Path) -> tuple[list[dict], list[dict]]:
@@ -841,6 +892,8 @@ def _rig_rotors(data: dict, path: Path) -> tuple[list[dict], list[dict]]:
         rotor = _rig_rotor(data["rotor"], path.parent, lambda r: rotor_for_rig(r, data["condition"]))
         _raise(path, _rig_control_problems(rotor, data["condition"], "condition"))
         return [rotor], [data["condition"]]
+    _raise(path, [problem for i, entry in enumerate(data["rotors"]) if "thrust_axis_T" in entry
+                  for problem in axis_problems(entry["thrust_axis_T"], f"rotors[{i}].thrust_axis_T")])
     rotors, conditions, problems, seen = [], [], [], {}
     free = data["models"]["bvi"] and data.get("wake", {}).get("model") == "free" and len(data["rotors"]) > 1
     for i, entry in enumerate(data["rotors"]):
@@ -921,6 +974,7 @@ def load_rig(path: str | Path) -> dict:
     if path.stem != data["name"]:
         _raise(path, [("name", f"expected the file stem '{path.stem}', got '{data['name']}'")])
     rotors, conditions = _rig_rotors(data, path)
+    _raise(path, _azimuth_grid_problems(data["resolution"]["n_psi"], {"the rig's": rotors}))
     _raise(path, _period_problems(data, rotors, conditions))
     if "stations_r_over_R" in data:
         _raise(path, _station_problems(data["stations_r_over_R"], rotors, int(data["resolution"]["n_r"])))

@@ -126,7 +126,8 @@ def _source_hemisphere(case, obsset):
     return {"rotors": list(case.rotors), "solidity": rotor_solidities(case.aircraft),
             "broadband": settings["models"]["broadband"],
             "reference_radius_m": settings["footprint"]["reference_radius_R"] * case.aircraft["rotors"][0]["radius_m"],
-            "obsset": settings["footprint"]["source_set"], "variant": case.variants[-1], **_tone_sum(case)}
+            "obsset": settings["footprint"]["source_set"], "variant": case.variants[-1], **_tone_sum(case),
+            **({"rotor_configs": case.rotors, "atmosphere": settings["atmosphere"]} if metrics_reads_disks(settings) else {})}
 
 
 def _certification(case, obsset):

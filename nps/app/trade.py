@@ -16,6 +16,7 @@ from typing import Mapping, Sequence
 import numpy as np
 import pandas as pd
 
+from nps.app.broadband import rotor_broadband_models
 from nps.app.config import Campaign
 from nps.app.study import hotspot
 from nps.noise.metrics import rotor_solidities
@@ -36,7 +37,8 @@ def case_row(campaign: Campaign, aircraft: str, segment: str, design: Mapping, t
              warnings: Sequence[str]) -> pd.DataFrame:
     """The one-row trade table of a case: ``design`` (label → value) first, then aircraft, segment and its
     name, per rotor ``<rotor>_{thrust_N, torque_Nm, power_W, ct, ct_sigma, omega_rad_s, tip_speed_mps,
-    tip_mach}``, ``power_W`` (all rotors), per observer set the maxima (:func:`noise_column`) with the
+    tip_mach}`` and ``<rotor>_broadband`` (the model its broadband came from: ``pegg``, ``bpm`` or ``none``;
+    ``auto`` may choose differently from design to design), ``power_W`` (all rotors), per observer set the maxima (:func:`noise_column`) with the
     azimuth and elevation of the loudest observer, the maxima of the per-source OASPL
     (``max_{thickness,loading,broadband}_db``) and of the thickness OASPL in the hub plane (elevation 0,
     ``in_plane_max_thickness_db``) where the set has such observers, and ``validity_warnings`` ("; "-joined)."""
@@ -44,6 +46,7 @@ def case_row(campaign: Campaign, aircraft: str, segment: str, design: Mapping, t
     row.update(aircraft=aircraft, segment=segment, segment_name=campaign.segment(segment)["name"])
     solidity = rotor_solidities(campaign.aircraft[aircraft])
     total = 0.0
+    broadband = rotor_broadband_models(campaign.config["models"]["broadband"], trim, list(loads_summaries))
     for name, table in loads_summaries.items():
         values = dict(zip(table["quantity"], table["value"]))
         state = trim.loc[trim["rotor"] == name].iloc[0]
@@ -55,6 +58,7 @@ def case_row(campaign: Campaign, aircraft: str, segment: str, design: Mapping, t
         row[f"{name}_omega_rad_s"] = float(state["omega_rad_s"])
         row[f"{name}_tip_speed_mps"] = float(state["omega_rad_s"] * state["radius_m"])
         row[f"{name}_tip_mach"] = float(state["tip_mach"])
+        row[f"{name}_broadband"] = broadband[name]
         total += float(values["power_W"])
     row["power_W"] = total
     for obsset, table in metrics.items():
@@ -128,14 +132,21 @@ def mark_pareto(table: pd.DataFrame, noise: str = "max_dba_db", power: str = "po
     return table
 
 
+def _relative(values: pd.Series, base) -> bool:
+    """Whether a variable's ``values`` change relative to its ``base`` value: numbers (not booleans or text) of the
+    base value's sign, not all equal."""
+    numeric = pd.api.types.is_numeric_dtype(values) and not pd.api.types.is_bool_dtype(values)
+    return (numeric and isinstance(base, (int, float)) and not isinstance(base, bool) and base != 0
+            and bool((values / base > 0).all()) and values.nunique() > 1)
+
+
 def sensitivity(table: pd.DataFrame, variables: Mapping[str, float], metrics: Sequence[str]) -> pd.DataFrame:
     """Change of each metric per +10 % of each variable, per aircraft × segment: least squares of the metric
     on ln(variable / base value) over the designs (all variables at once: the main effects of a factorial),
     times ln 1.1. Levels in dB change by that many dB; ``power_W`` is fitted as ln(power) and reported in
-    percent. ``variables``: label → base value (variables with values of both signs are skipped: no
-    relative change). Columns: aircraft, segment, metric, variable, change_per_10pct, unit."""
-    usable = [v for v, base in variables.items()
-              if isinstance(base, (int, float)) and base != 0 and (table[v] / base > 0).all() and table[v].nunique() > 1]
+    percent. ``variables``: label → base value (variables with values of both signs, booleans and text are
+    skipped: no relative change). Columns: aircraft, segment, metric, variable, change_per_10pct, unit."""
+    usable = [v for v, base in variables.items() if _relative(table[v], base)]
     rows = []
     for (aircraft, segment), group in table.groupby(["aircraft", "segment"], sort=False):
         design = np.column_stack([np.ones(len(group))] + [np.log(group[v].to_numpy(float) / variables[v]) for v in usable])

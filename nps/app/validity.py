@@ -17,18 +17,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, replace
-from typing import Iterable, Mapping, Sequence
+from typing import TYPE_CHECKING, Iterable, Mapping, Sequence
 
 import numpy as np
 import pandas as pd
 
 from nps.rotor.bet import MAX_CONTROL_RAD
-from nps.noise.broadband.pegg import peak_frequency_hz, pegg_outside_range
-from nps.noise.metrics import STUDY_BANDS
 from nps.rotor.airfoils import LinearAirfoil
 from nps.rotor.geometry import RotorGeometry
-from nps.noise.spectra import band_number_of
-from nps.wake.prescribed import WakeModel
+
+if TYPE_CHECKING:  # an annotation only: the trim, loads and observers jobs need no wake module
+    from nps.wake.prescribed import WakeModel
 
 JOHNSON_1980 = "Johnson, Helicopter Theory (1980)"
 LEISHMAN_2006 = "Leishman, Principles of Helicopter Aerodynamics, 2nd ed. (2006)"
@@ -295,6 +294,10 @@ def check_observer_hub_distance(observer_ids: Sequence[int], to_hub_m: np.ndarra
 
 def check_pegg_peak_frequency(thrust_N: float, tip_speed_mps: float, name: str, stage: str = "metrics") -> Finding | None:
     """Pegg's peak frequency (eq. 3.1) positive and inside the analysed bands (10 Hz – 20 kHz)."""
+    from nps.noise.broadband.pegg import peak_frequency_hz  # here: the jobs without broadband need no noise module
+    from nps.noise.metrics import STUDY_BANDS
+    from nps.noise.spectra import band_number_of
+
     low, high = int(STUDY_BANDS[0]), int(STUDY_BANDS[-1])
     limit = "inside the analysed 1/3-octave bands 10 Hz - 20 kHz"
     try:
@@ -457,6 +460,8 @@ def rig_findings(rotor: Mapping, trim: pd.DataFrame, summary: pd.DataFrame, micr
 def pegg_range_notes(trim: pd.DataFrame, rotors: Sequence[str]) -> list[str]:
     """Pegg's data-range warnings of the ``rotors`` in a trim table (radius, tip speed, thrust outside his
     helicopter main rotors', :func:`nps.noise.broadband.pegg.pegg_outside_range`), each suggesting BPM."""
+    from nps.noise.broadband.pegg import pegg_outside_range
+
     out = []
     for _, row in trim[trim["rotor"].isin(list(rotors))].iterrows():
         tip_speed = float(row["omega_rad_s"]) * float(row["radius_m"])

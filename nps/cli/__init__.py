@@ -1,18 +1,22 @@
 """Command-line entry points, one module per stage (``python -m nps <stage>``): argument parsing only.
 
-Each module builds the stage's ``inputs``, ``outputs`` and ``params`` from its options (defaults read
-from the configuration schemas, :func:`nps.app.config.schema_default`) and calls the same
-``nps.stages.<stage>.run`` the workflow runs. :func:`run_stage` prints the stage's report, and turns
-every expected error (bad file, bad field, bad value) into one line on stderr and exit status 2;
-``--debug`` shows the traceback instead.
+Each module builds the stage's ``inputs`` and ``outputs`` from its options and calls the same
+``nps.stages.<stage>.run`` the workflow runs. A command that reads an aircraft file plans its ``params`` as the
+workflow does (:func:`plan`, nps.app.plan.stage_params): from the aircraft and the campaign configuration its
+options make (:func:`settings`: the config schema's defaults with the options written in), so a command at its
+defaults gives the workflow's params for a campaign at the schema's defaults. :func:`run_stage` prints the
+stage's report, and turns every expected error (bad file, bad field, bad value) into one line on stderr and exit
+status 2; ``--debug`` shows the traceback instead. An output file named with a suffix other than its format's
+(:func:`output_file`) is a usage error.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
-from nps.app.config import load_schema, schema_default
+from nps.app.config import ConfigError, aircraft_rotor, field_problem, load_aircraft, load_schema, schema_default, schema_defaults
 
 
 class _Parser(argparse.ArgumentParser):
@@ -28,8 +32,8 @@ def parser(stage: str, description: str, validity: bool = False) -> argparse.Arg
     ap = _Parser(prog=f"python -m nps {stage}", description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--debug", action="store_true", help="show the traceback of an error")
     if validity:
-        ap.add_argument("--allow-outside-validity", action="store_true",
-                        help="run outside the models' validity envelope with a warning in the output's metadata")
+        option(ap, "--allow-outside-validity", "campaign.allow_outside_validity", action="store_true",
+               help="run outside the models' validity envelope with a warning in the output's metadata")
     return ap
 
 
@@ -85,17 +89,75 @@ def ground_options(ap: argparse.ArgumentParser) -> None:
         option(ap, flag, f"footprint.ground.{field}", dest=f"ground_{field}")
 
 
-def ground(args: argparse.Namespace) -> dict:
-    """The ``ground`` params slice of the parsed :func:`ground_options`."""
-    return {field: getattr(args, f"ground_{field}") for field in GROUND_OPTIONS}
+# the formats an output file option may name, by suffix
+FORMATS = {".parquet": "Parquet table", ".csv": "CSV table"}
+
+
+def output_file(suffix: str):
+    """argparse ``type`` of an output file written in the format of ``suffix`` (:data:`FORMATS`): a path with
+    another suffix is a usage error naming the option and the suffix, before anything is read or written."""
+    def path(text: str) -> str:
+        if Path(text).suffix.lower() != suffix:
+            raise argparse.ArgumentTypeError(f"expected a path ending in {suffix} (a {FORMATS[suffix]} is written "
+                                             f"there), got {text!r}")
+        return text
+
+    return path
+
+
+def _put(config: dict, field: str, value) -> None:
+    *sections, key = field.split(".")
+    for section in sections:
+        config = config.setdefault(section, {})
+    config[key] = value
+
+
+def settings(ap: argparse.ArgumentParser, args: argparse.Namespace, fields: dict | None = None) -> dict:
+    """The campaign configuration a command plans its stage params from: the config schema's defaults
+    (:func:`nps.app.config.schema_defaults`) with the value of every option of a config field (:func:`option`;
+    None: not given, the schema's) written in, then ``fields`` (dotted field → value) for what no option names
+    itself (``--no-absorption``, an observer-set file). ConfigError ``"--option: expected ..."`` for a value
+    outside its field."""
+    config = schema_defaults("config")
+    for action in ap._actions:
+        value = getattr(args, action.dest, None)
+        if getattr(action, "schema_name", None) != "config" or value is None:
+            continue
+        problem = field_problem("config", action.schema_field, value)
+        if problem:
+            raise ConfigError(f"{action.option_strings[0]}: {problem}")
+        _put(config, action.schema_field, value)
+    for field, value in (fields or {}).items():
+        _put(config, field, value)
+    return config
+
+
+def command_aircraft(path: str, rotors: list[str] | None = None) -> dict:
+    """The validated aircraft file ``path``; with ``rotors`` (``--rotor``) those only, in that order (the first
+    the reference rotor). ConfigError naming the file for a rotor it does not have."""
+    aircraft = load_aircraft(path)
+    if rotors:
+        aircraft = {**aircraft, "rotors": [aircraft_rotor(aircraft, name, path) for name in rotors]}
+    return aircraft
+
+
+def plan(stage: str, ap: argparse.ArgumentParser, args: argparse.Namespace, aircraft: dict, fields: dict | None = None,
+         obsset: str | None = None, **case) -> dict:
+    """The params the workflow gives a ``stage`` job of ``aircraft`` (:func:`nps.app.plan.stage_params`) with the
+    configuration of the command's options (:func:`settings`, ``fields``); ``case``: the other
+    :class:`nps.app.plan.CaseConfig` fields (speeds, mission). The ground recorded as written is the options' (every
+    field: an option at its default writes it too). The command adds the job's names (aircraft, segment, observer
+    set, variant). ConfigError for an option outside its field."""
+    from nps.app.plan import CaseConfig, stage_params
+
+    config = settings(ap, args, fields)
+    return stage_params(stage, CaseConfig(aircraft, config, ground_as_written=config["footprint"]["ground"], **case), obsset)
 
 
 def same_path_problem(inputs: dict, outputs: dict) -> str | None:
     """The first output that would overwrite an input: an output path equal to an input path, or an
     existing output file inside an input directory. ``inputs``/``outputs`` map a name (option or stage
     key) to a path; None values are skipped. Returns the one-line problem or None."""
-    from pathlib import Path
-
     read = {name: Path(path).resolve() for name, path in inputs.items() if path is not None}
     for out_name, out_path in outputs.items():
         if out_path is None:
@@ -112,16 +174,13 @@ def same_path_problem(inputs: dict, outputs: dict) -> str | None:
 
 
 def run_stage(stage: str, inputs: dict, outputs: dict, params: dict, debug: bool = False,
-              allow_outside_validity: bool = False, sources: dict | None = None) -> int:
+              sources: dict | None = None) -> int:
     """Run ``nps.stages.<stage>.run``; print its report; expected errors → one line and exit status 2.
-    ``allow_outside_validity``: the campaign switch, passed to the stage as a param when set.
     ``sources``: option → file the command read itself (configuration files); no output may be an input
     (:func:`same_path_problem`) or one of them."""
     clash = same_path_problem({**inputs, **(sources or {})}, outputs)
     if clash:
         return fail(clash)
-    if allow_outside_validity:
-        params = {**params, "allow_outside_validity": True}
     from nps.stages import stage_function
     from nps.stages.job import expected_errors
 
@@ -140,33 +199,43 @@ def run_stage(stage: str, inputs: dict, outputs: dict, params: dict, debug: bool
     return 0
 
 
-def option_problem(options: dict) -> str | None:
-    """First command-line value outside its configuration-schema field: ``options`` maps the option
-    (``--isa-delta-k``) to (schema field, value); returns ``"--isa-delta-k: expected ..."`` or None."""
-    from nps.app.config import field_problem
-
-    for option, (field, value) in options.items():
-        problem = field_problem("config", field, value)
-        if problem:
-            return f"{option}: {problem}"
-    return None
-
-
 def fail(message: str) -> int:
     """One-line error for a problem found while reading the options (exit status 2)."""
     print(f"error: {message}", file=sys.stderr)
     return 2
 
 
-def trim_rotors(path: str) -> list[str] | str:
+def trim_rotors(path: str) -> list[str]:
     """The rotor names of a trim artifact, in its order (a command without an aircraft file: a PSU-WOPWOP case's
-    rotors, nps.stages.wopwop_run); a one-line problem when it cannot be read."""
+    rotors, nps.stages.wopwop_run); ValueError naming the file when it cannot be read."""
     from nps.app.io import read_table
 
-    try:
-        return [str(name) for name in read_table(path, required=("rotor",), nonempty=True)["rotor"]]
-    except ValueError as error:
-        return str(error)
+    return [str(name) for name in read_table(path, required=("rotor",), nonempty=True)["rotor"]]
+
+
+def command_rotors(path: str | None, rotors: list[str] | None, trim: str) -> tuple[dict, list[str] | None]:
+    """The aircraft a command with an optional ``--aircraft`` plans for, and the rotors that replace the planned
+    params' (None: keep them): the aircraft file (:func:`command_aircraft`) and None; without one (a PSU-WOPWOP
+    case's artifacts) the trim artifact's aircraft name with no rotor configuration, and ``rotors`` or the trim
+    artifact's (:func:`trim_rotors`)."""
+    if path:
+        return command_aircraft(path, rotors), None
+    return {"name": provenance(trim, "aircraft"), "rotors": []}, rotors or trim_rotors(trim)
+
+
+def disks_variant(disks: str, rotor: str) -> str:
+    """The load variant of a disk-table directory, from ``rotor``'s table: "bvi" for the wake stage's BVI loads,
+    else "base"."""
+    from nps.app.io import rotor_path
+
+    return "bvi" if provenance(str(rotor_path(disks, rotor)), "stage") == "bvi" else "base"
+
+
+def signals_variant(signals: str, rotor: str) -> str:
+    """The load variant of a signals directory, from ``rotor``'s table ("base" when it records none)."""
+    from nps.app.io import rotor_path
+
+    return provenance(str(rotor_path(signals, rotor)), "variant") or "base"
 
 
 def provenance(path: str, key: str) -> str:

@@ -8,7 +8,7 @@ import dataclasses
 
 from nps.app.config import ConfigError
 from nps.app.designs import campaign_for_files
-from nps.cli import fail, parser, run_stage
+from nps.cli import fail, output_file, parser, run_stage
 
 
 def main(argv: list[str]) -> int:
@@ -20,7 +20,7 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--observer-set", action="append", dest="observer_sets",
                     help="observer set whose maxima enter the row (repeatable; default hemisphere)")
     ap.add_argument("--cache", required=True, help="stage-cache directory (the workflow's: results/studies/cache)")
-    ap.add_argument("--out", required=True, help="output Parquet (one row per segment)")
+    ap.add_argument("--out", required=True, type=output_file(".parquet"), help="output Parquet (one row per segment)")
     args = ap.parse_args(argv)
     try:
         campaign = campaign_for_files(args.aircraft, args.mission, args.config)

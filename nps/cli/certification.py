@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from nps.cli import default, fail, ground, ground_options, option, parser, run_stage
+from nps.cli import fail, ground_options, option, parser, plan, run_stage
 from nps.app.config import ConfigError, load_aircraft, load_mission
 
 
@@ -21,8 +21,7 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--aircraft", required=True, help="aircraft YAML (gross_weight_kg = maximum mass)")
     ap.add_argument("--mission", required=True, help="mission YAML (reference speeds)")
     for name in ("takeoff", "overflight", "approach"):
-        ap.add_argument(f"--{name}-segment", default=default(f"certification.segments.{name}"),
-                        help=f"mission segment flown in the {name} procedure")
+        option(ap, f"--{name}-segment", f"certification.segments.{name}", help=f"mission segment flown in the {name} procedure")
         ap.add_argument(f"--{name}-hemisphere", required=True, help=f"source hemisphere of the {name} segment")
     option(ap, "--vne-mps", "certification.vne_mps")
     option(ap, "--approach-min-speed-mps", "certification.approach_min_speed_mps")
@@ -33,6 +32,7 @@ def main(argv: list[str]) -> int:
     try:
         aircraft = load_aircraft(args.aircraft)
         mission = load_mission(args.mission)
+        params = plan("certification", ap, args, aircraft, {"models.absorption": not args.no_absorption}, mission=mission)
     except ConfigError as error:
         return fail(str(error))
     procedures = ("takeoff", "overflight", "approach")
@@ -41,9 +41,6 @@ def main(argv: list[str]) -> int:
     outputs = {"summary": str(out / "certification.parquet"), "summary_csv": str(out / "certification.csv"),
                "microphones": str(out / "microphones.parquet"), "histories": str(out / "histories.parquet"),
                "pnlt_figure": str(out / "pnlt.png"), "table_figure": str(out / "certification.png")}
-    params = {"mission": mission, "aircraft": aircraft["name"], "max_mass_kg": aircraft["gross_weight_kg"],
-              "segments": {p: getattr(args, f"{p}_segment") for p in procedures}, "vne_mps": args.vne_mps,
-              "approach_min_speed_mps": args.approach_min_speed_mps, "ground": ground(args), "ground_as_written": ground(args),
-              "absorption": not args.no_absorption}
+    params["aircraft"] = aircraft["name"]
     return run_stage("certification", inputs, outputs, params, args.debug,
                      sources={"--aircraft": args.aircraft, "--mission": args.mission})

@@ -10,7 +10,7 @@ Output: observer, group (each group and "total"), time_s (t_k = T0 + k·D/N), p_
 from __future__ import annotations
 
 from nps.noise.acoustics import C0_MPS, RHO0_KG_M3
-from nps.cli import parser, run_stage
+from nps.cli import output_file, parser, run_stage
 
 
 def main(argv: list[str]) -> int:
@@ -22,7 +22,7 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--samples", type=int, required=True, help="number of observer samples N")
     ap.add_argument("--c0", type=float, default=C0_MPS, help="speed of sound (m/s), default %(default)s")
     ap.add_argument("--rho0", type=float, default=RHO0_KG_M3, help="density (kg/m^3), default %(default)s")
-    ap.add_argument("--out", required=True, help="output Parquet")
+    ap.add_argument("--out", required=True, type=output_file(".parquet"), help="output Parquet")
     args = ap.parse_args(argv)
     params = {"t_start_s": args.t_start, "duration_s": args.duration, "n_samples": args.samples, "c0_mps": args.c0,
               "rho0_kg_m3": args.rho0}

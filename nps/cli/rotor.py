@@ -8,15 +8,22 @@ shaft angle (positive aft) and wind-tunnel speed (0: hover), atmosphere given di
 the hub-fixed test frame T (x_T downstream, z_T up, y_T = z_T × x_T; docs/reference/rigs.md): ``--mic X Y Z``
 (repeatable), ``--mic-file`` (CSV x_m,y_m,z_m or YAML), ``--arc-radius-m`` with ``--arc-angles-deg``.
 
-Runs the stages rig, loads and acoustics into ``--out-dir`` with the rig's settings (from the options: the
-schema defaults of the rig's acoustics section) and prints the rotor summary and the OASPL and BPF-harmonic
-levels at each microphone (also written to ``levels.csv``).
+Runs the stages rig, loads and acoustics into ``--out-dir`` for every rotor of the rig, with the rig's settings
+(from the options: the schema defaults of the rig's acoustics section) and the workflow's params of them
+(nps.app.plan), and prints each rotor's speed, the thrust, torque, power and C_T of the loads it radiates (the
+loads stage's, not the target), its BPF, and at each microphone the OASPL of all rotors and each rotor's
+BPF-harmonic levels (also written to ``levels.csv``; with several rotors the harmonic columns carry the rotor's
+name). A rig with ``models.bvi`` is radiated with its trimmed loads; its wake and BVI loads come from the
+workflow (``snakemake -j2 NAME``), as the output says. With ``--rig`` the rig file gives the rotor, condition,
+microphones and resolution: an option that would set them is refused.
 """
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
+import pandas as pd
 import yaml
 
 from nps.cli import default, fail, option, parser, run_stage, same_path_problem
@@ -24,6 +31,8 @@ from nps.core.atmosphere import isa
 
 N_HARMONICS = 5  # BPF harmonics listed in the printed table and levels.csv (an output choice, no rig field)
 ARC_PLANE = "xz"  # plane of an --arc-radius-m arc when --arc-plane is not given: the tunnel's vertical plane
+RENAMED = {"--test": "--rig"}  # former option names -> their names now
+WITH_RIG = ("help", "debug", "rig", "harmonics", "out_dir")  # the options a --rig run reads (the file gives the rest)
 
 
 def _rig_from_options(args) -> dict:
@@ -78,12 +87,21 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--mic-file", help="microphone file in T: CSV x_m,y_m,z_m or YAML")
     ap.add_argument("--arc-radius-m", type=float, help="microphone arc about the hub")
     ap.add_argument("--arc-angles-deg", type=float, nargs="+", help="arc angles (any spacing)")
-    ap.add_argument("--arc-plane", choices=["xz", "yz", "xy"], default=ARC_PLANE)
+    ap.add_argument("--arc-plane", choices=["xz", "yz", "xy"], default=ARC_PLANE,
+                    help=f"plane of the arc in T: xz (r cos a, 0, r sin a), yz, xy (default {ARC_PLANE})")
     ap.add_argument("--harmonics", type=int, default=N_HARMONICS, help=f"BPF harmonics listed (default {N_HARMONICS})")
     for key in ("n_psi", "n_r", "samples_per_rev"):
         option(ap, f"--{key.replace('_', '-')}", f"resolution.{key}", schema="rig")
     ap.add_argument("--out-dir", required=True, help="output directory")
+    renamed = next((old for old in RENAMED if any(a == old or a.startswith(f"{old}=") for a in argv)), None)
+    if renamed:
+        return fail(f"{ap.prog}: {renamed}: unknown option; did you mean {RENAMED[renamed]}? (its former name)")
     args = ap.parse_args(argv)
+    if args.rig:
+        ignored = [a.option_strings[0] for a in ap._actions if a.dest not in WITH_RIG and getattr(args, a.dest) != a.default]
+        if ignored:
+            return fail(f"{ignored[0]}: the rig file --rig {args.rig} gives the rotor, its condition, the microphones and "
+                        f"the resolution: remove {ignored[0]}, or change the rig file")
     out = Path(args.out_dir)
     rig_file = Path(args.rig) if args.rig else out / "rotor.yaml"
     inputs = {"--rig": args.rig, "--rotor-file": args.rotor_file, "--aircraft": args.aircraft, "--mic-file": args.mic_file}
@@ -130,48 +148,68 @@ def option_names(message: str) -> str:
     return message
 
 
+def rotor_levels(signals: dict, bpf_hz: dict, n_harmonics: int) -> pd.DataFrame:
+    """Per observer the OASPL of every rotor's signals summed and each rotor's BPF-harmonic levels of its own signals
+    at its own BPF (:func:`nps.rig.case.tone_levels`); the harmonic columns ``bpf{m}_hz``, ``bpf{m}_db`` are prefixed
+    with the rotor's name (and its own ``oaspl_db`` added) when there are several rotors."""
+    from nps.rig.case import tone_levels
+
+    several = len(signals) > 1
+    parts = [tone_levels(signals, next(iter(bpf_hz.values())), 0)]
+    for name, table in signals.items():
+        own = tone_levels({name: table}, bpf_hz[name], n_harmonics)
+        own = own.drop(columns=["observer"] if several else ["observer", "oaspl_db"])
+        parts.append(own.add_prefix(f"{name}_" if several else ""))
+    return pd.concat(parts, axis=1)
+
+
 def run_rig(rig_file: Path, out: Path, n_harmonics: int, debug: bool = False, options: bool = False) -> int:
-    """Set-up, loads and acoustics of ``rig_file`` into ``out`` with the rig's settings (as the workflow's
-    jobs of aircraft ``rigs``, segment NAME); print the loads and the levels. The set-up (stage ``rig``)
-    applies every check of the three stages before it writes (nps.stages.rig). ``options``: the rig was
-    built from the options (messages name them)."""
+    """Set-up, loads and acoustics of ``rig_file`` into ``out`` for every rotor of the rig, with the workflow's
+    params (nps.app.plan.stage_params of the rig's rotors and settings, the jobs of aircraft ``rigs``, segment
+    NAME, variant base); print each rotor's loads (thrust, torque, power and C_T of the loads radiated) and the
+    levels. The set-up (stage ``rig``) applies every check of the three stages before it writes
+    (nps.stages.rig). ``options``: the rig was built from the options (messages name them)."""
     from nps.app.config import ConfigError, load_rig
+    from nps.app.io import read_signals, read_table, rotor_path
+    from nps.app.plan import CaseConfig, stage_params
     from nps.rig.case import RIG_AIRCRAFT
 
     try:
         rig = load_rig(rig_file)
     except ConfigError as error:
         return fail(option_names(str(error)) if options else str(error))
-    rotor, settings = rig["rotor_config"], rig["settings"]
-    resolution, where = settings["resolution"], {"aircraft": RIG_AIRCRAFT, "segment": rig["name"]}
-    trim, mics = str(out / "trim.parquet"), str(out / "microphones.parquet")
+    case = CaseConfig({"rotors": rig["rotor_configs"]}, rig["settings"])
+    where = {"aircraft": RIG_AIRCRAFT, "segment": rig["name"]}
+    trim, mics, loads = str(out / "trim.parquet"), str(out / "microphones.parquet"), out / "loads"
     steps = [
         ("rig", {"config": str(rig_file)}, {"trim": trim, "observers": mics}, {}),
-        ("loads", {"trim": trim}, {"loads": str(out / "loads")},
-         {"rotors": {rotor["name"]: rotor}, "n_psi": resolution["n_psi"], "n_r": resolution["n_r"],
-          "allow_outside_validity": settings["campaign"]["allow_outside_validity"], **where}),
-        ("acoustics", {"disks": str(out / "loads"), "trim": trim, "observers": mics}, {"signals": str(out / "acoustics")},
-         {"rotors": [rotor["name"]], "thickness": settings["models"]["thickness"],
-          "chord_fractions": settings["acoustics"]["dual_compact_chord_fractions"],
-          "samples_per_rev": resolution["samples_per_rev"], "hinge_offsets_m": {rotor["name"]: rotor["hinge_offset_m"]},
-          "obsset": "microphones", "variant": "base", **where}),
+        ("loads", {"trim": trim}, {"loads": str(loads)}, {**stage_params("loads", case), **where}),
+        ("acoustics", {"disks": str(loads), "trim": trim, "observers": mics}, {"signals": str(out / "acoustics")},
+         {**stage_params("acoustics", case), "obsset": "microphones", "variant": "base", **where}),
     ]
     for stage, inputs, outputs, params in steps:
         status = run_stage(stage, inputs, outputs, params, debug)
         if status:
             return status
-    from nps.app.io import read_signals, read_table
-    from nps.rig.case import tone_levels
-
-    row = read_table(trim).iloc[0]
-    bpf_hz = row["n_blades"] * row["omega_rad_s"] / (2.0 * 3.141592653589793)
-    levels = tone_levels(read_signals(out / "acoustics", [rotor["name"]]), bpf_hz, n_harmonics)
+    names = list(case.rotors)
+    rows = read_table(trim).set_index("rotor")
+    bpf_hz = {name: rows.loc[name, "n_blades"] * rows.loc[name, "omega_rad_s"] / (2.0 * math.pi) for name in names}
+    levels = rotor_levels(read_signals(out / "acoustics", names), bpf_hz, n_harmonics)
     levels = read_table(mics)[["observer", "x_T_m", "y_T_m", "z_T_m"]].merge(levels, on="observer")
     levels.to_csv(out / "levels.csv", index=False, float_format="%.6g")
-    print(f"\nrotor {rotor['name']}: omega {row['omega_rad_s']:.6g} rad/s ({row['omega_rad_s'] * 30 / 3.141592653589793:.6g} rpm), "
-          f"thrust {row['thrust_N']:.6g} N, torque {row['torque_Nm']:.6g} N m, power {row['power_W']:.6g} W, "
-          f"C_T {row['ct']:.5g}, BPF {bpf_hz:.6g} Hz")
-    print(levels[["observer", "x_T_m", "y_T_m", "z_T_m", "oaspl_db"] + [f"bpf{m}_db" for m in range(1, n_harmonics + 1)]]
+    print()
+    for name in names:
+        summary = read_table(rotor_path(loads, name, "_summary")).set_index("quantity")["value"]
+        omega = rows.loc[name, "omega_rad_s"]
+        print(f"rotor {name}: omega {omega:.6g} rad/s ({omega * 30 / math.pi:.6g} rpm), thrust {summary['thrust_N']:.6g} N, "
+              f"torque {summary['torque_Nm']:.6g} N m, power {summary['power_W']:.6g} W, C_T {summary['ct']:.5g}, "
+              f"BPF {bpf_hz[name]:.6g} Hz")
+    if rig["models"]["bvi"]:
+        print(f"note: the trimmed loads are radiated (variant base); the rig's wake and BVI loads (models.bvi): "
+              f"snakemake -j2 {rig['name']}")
+    prefix = {name: f"{name}_" if len(names) > 1 else "" for name in names}
+    harmonics = [f"{prefix[name]}bpf{m}_db" for name in names for m in range(1, n_harmonics + 1)]
+    print(levels[["observer", "x_T_m", "y_T_m", "z_T_m", "oaspl_db"] + harmonics]
           .to_string(index=False, float_format=lambda v: f"{v:.2f}"))
     print(f"written: {out / 'levels.csv'}")
     return 0

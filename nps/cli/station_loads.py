@@ -12,7 +12,7 @@ both interpolated linearly in r between the table's stations. Example:
 
 from __future__ import annotations
 
-from nps.cli import parser, run_stage
+from nps.cli import output_file, parser, run_stage
 
 
 def main(argv: list[str]) -> int:
@@ -21,7 +21,7 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--trim", required=True, help="trim artifact (trim.parquet)")
     ap.add_argument("--stations", required=True, type=float, nargs="+", help="radial stations r/R")
     ap.add_argument("--rotors", nargs="+", default=None, help="rotors (default: every rotor of the trim)")
-    ap.add_argument("--out", required=True, help="output table (.parquet)")
+    ap.add_argument("--out", required=True, type=output_file(".parquet"), help="output table (.parquet)")
     args = ap.parse_args(argv)
     params = {"stations": args.stations, **({"rotors": args.rotors} if args.rotors else {})}
     return run_stage("station_loads", {"disks": args.disks, "trim": args.trim}, {"table": args.out}, params, args.debug)

@@ -1,8 +1,9 @@
-"""``python -m nps trim``: aircraft trim of one aircraft in one mission segment (stage nps.stages.trim)."""
+"""``python -m nps trim``: aircraft trim of one aircraft in one mission segment (stage nps.stages.trim), with the
+params the workflow plans for it (nps.app.plan)."""
 
 from __future__ import annotations
 
-from nps.cli import default, fail, option_problem, parser, run_stage
+from nps.cli import fail, option, output_file, parser, plan, run_stage
 from nps.app.config import ConfigError, load_aircraft, load_mission
 
 
@@ -11,32 +12,25 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--aircraft", required=True, help="aircraft YAML (config/aircraft/NAME.yaml)")
     ap.add_argument("--mission", required=True, help="mission YAML (config/missions/NAME.yaml)")
     ap.add_argument("--segment", required=True, help="segment id, e.g. seg3")
-    ap.add_argument("--altitude-m", type=float, default=default("atmosphere.altitude_m"))
-    ap.add_argument("--isa-delta-k", type=float, default=default("atmosphere.isa_delta_K"))
-    ap.add_argument("--relative-humidity-pct", type=float, default=default("atmosphere.relative_humidity_pct"))
-    ap.add_argument("--n-psi", type=int, default=default("resolution.n_psi"),
-                    help="azimuth stations of the loads solving rpm-controlled rotor speeds (default %(default)s)")
-    ap.add_argument("--n-r", type=int, default=default("resolution.n_r"), help="radial stations (default %(default)s)")
-    ap.add_argument("--out", required=True, help="output Parquet (one row per rotor)")
+    option(ap, "--altitude-m", "atmosphere.altitude_m")
+    option(ap, "--isa-delta-k", "atmosphere.isa_delta_K")
+    option(ap, "--relative-humidity-pct", "atmosphere.relative_humidity_pct")
+    option(ap, "--n-psi", "resolution.n_psi",
+           help="azimuth stations of the loads solving rpm-controlled rotor speeds (default %(default)s)")
+    option(ap, "--n-r", "resolution.n_r", help="radial stations (default %(default)s)")
+    ap.add_argument("--out", required=True, type=output_file(".parquet"), help="output Parquet (one row per rotor)")
     args = ap.parse_args(argv)
-    problem = option_problem({"--altitude-m": ("atmosphere.altitude_m", args.altitude_m),
-                              "--isa-delta-k": ("atmosphere.isa_delta_K", args.isa_delta_k),
-                              "--relative-humidity-pct": ("atmosphere.relative_humidity_pct", args.relative_humidity_pct)})
-    if problem:
-        return fail(problem)
     try:
         aircraft = load_aircraft(args.aircraft)
         mission = load_mission(args.mission)
+        segment = next((s for s in mission["segments"] if s["id"] == args.segment), None)
+        if segment is None:
+            raise ConfigError(f"{args.mission}: segments: no segment '{args.segment}'")
+        if aircraft["name"] not in segment["aircraft"]:
+            raise ConfigError(f"{args.mission}: segments.{args.segment}.aircraft: no speeds for '{aircraft['name']}'")
+        params = plan("trim", ap, args, aircraft, speeds=segment["aircraft"][aircraft["name"]])
     except ConfigError as error:
         return fail(str(error))
-    segment = next((s for s in mission["segments"] if s["id"] == args.segment), None)
-    if segment is None:
-        return fail(f"{args.mission}: segments: no segment '{args.segment}'")
-    if aircraft["name"] not in segment["aircraft"]:
-        return fail(f"{args.mission}: segments.{args.segment}.aircraft: no speeds for '{aircraft['name']}'")
-    atmosphere = {"altitude_m": args.altitude_m, "isa_delta_K": args.isa_delta_k,
-                  "relative_humidity_pct": args.relative_humidity_pct}
-    params = {"aircraft_config": aircraft, "speeds": segment["aircraft"][aircraft["name"]], "atmosphere": atmosphere,
-              "segment": args.segment, "n_psi": args.n_psi, "n_r": args.n_r}
+    params.update(aircraft=aircraft["name"], segment=args.segment)
     return run_stage("trim", {}, {"trim": args.out}, params, args.debug,
-                     args.allow_outside_validity, sources={"--aircraft": args.aircraft, "--mission": args.mission})
+                     sources={"--aircraft": args.aircraft, "--mission": args.mission})

@@ -1,4 +1,5 @@
-"""``python -m nps wake``: tip-vortex wake and BVI loads of every rotor of an aircraft (stage nps.stages.wake).
+"""``python -m nps wake``: tip-vortex wake and BVI loads of every rotor of an aircraft (stage nps.stages.wake), with
+the params the workflow plans for it (nps.app.plan).
 
 Reads the trim artifact and the loads directory (``{rotor}.parquet`` and ``{rotor}_summary.parquet``);
 writes the wake geometry (``{rotor}.parquet`` and a legacy-VTK series ``{rotor}_vtk/``) into
@@ -7,8 +8,8 @@ writes the wake geometry (``{rotor}.parquet`` and a legacy-VTK series ``{rotor}_
 
 from __future__ import annotations
 
-from nps.cli import fail, option, option_problem, parser, provenance, run_stage, schema_field
-from nps.app.config import ConfigError, aircraft_rotor, load_aircraft
+from nps.cli import command_aircraft, fail, option, parser, plan, provenance, run_stage, schema_field
+from nps.app.config import ConfigError
 
 # config ``wake`` field -> option; the free-wake block's fields become --free-<field>
 WAKE_OPTIONS = {"model": "--model", "A": "--A", "B": "--B", "C": "--C", "D": "--D",
@@ -37,23 +38,11 @@ def main(argv: list[str]) -> int:
     option(ap, "--revolutions", "resolution.wake_revolutions", help="wake age kept")
     option(ap, "--steps-per-rev", "resolution.n_psi", help="vortex segments per revolution")
     args = ap.parse_args(argv)
-    free = {field: getattr(args, f"free_{field}") for field in FREE_FIELDS if getattr(args, f"free_{field}") is not None}
-    problem = option_problem({**{flag: (f"wake.{field}", getattr(args, field)) for field, flag in WAKE_OPTIONS.items()},
-                              **{f"--free-{k.replace('_', '-')}": (f"wake.free.{k}", v) for k, v in free.items()},
-                              "--revolutions": ("resolution.wake_revolutions", args.revolutions),
-                              "--steps-per-rev": ("resolution.n_psi", args.steps_per_rev)})
-    if problem:
-        return fail(problem)
     try:
-        aircraft = load_aircraft(args.aircraft)
-        names = args.rotor or [r["name"] for r in aircraft["rotors"]]
-        rotors = {name: aircraft_rotor(aircraft, name, args.aircraft) for name in names}
+        aircraft = command_aircraft(args.aircraft, args.rotor)
+        params = plan("wake", ap, args, aircraft)
     except ConfigError as error:
         return fail(str(error))
-    wake = {**{field: getattr(args, field) for field in WAKE_OPTIONS}, "core_growth": args.core_growth,
-            "unsteady": args.unsteady, "free": free}
-    params = {"rotors": rotors, "wake": wake, "revolutions": args.revolutions, "steps_per_rev": args.steps_per_rev,
-              "aircraft": aircraft["name"], "segment": provenance(args.trim, "segment")}
+    params.update(aircraft=aircraft["name"], segment=provenance(args.trim, "segment"))
     return run_stage("wake", {"trim": args.trim, "loads": args.loads_dir}, {"wake": args.wake_dir, "bvi": args.bvi_dir},
-                     params, args.debug,
-                     args.allow_outside_validity, sources={"--aircraft": args.aircraft})
+                     params, args.debug, sources={"--aircraft": args.aircraft})

@@ -17,9 +17,7 @@ NPS's observer, trim and signal tables and level tables (stage nps.stages.wopwop
 
 from __future__ import annotations
 
-from pathlib import Path
-
-from nps.cli import fail, parser, provenance, run_stage
+from nps.cli import disks_variant, fail, parser, provenance, run_stage
 
 
 def _run(argv: list[str]) -> int:
@@ -64,10 +62,8 @@ def _export(argv: list[str]) -> int:
     except ConfigError as error:
         return fail(str(error))
     params = stage_params("wopwop_export", CaseConfig(aircraft, settings))
-    first = Path(args.disks) / f"{params['rotors'][0]}.parquet"
     params.update(aircraft=aircraft["name"], segment=provenance(args.trim, "segment"),
-                  obsset=provenance(args.observers, "obsset"),
-                  variant="bvi" if provenance(str(first), "stage") == "bvi" else "base")
+                  obsset=provenance(args.observers, "obsset"), variant=disks_variant(args.disks, params["rotors"][0]))
     inputs = {"disks": args.disks, "trim": args.trim, "observers": args.observers}
     return run_stage("wopwop_export", inputs, {"case": args.out}, params, args.debug,
                      sources={"--aircraft": args.aircraft, "--config": args.config})

@@ -8,9 +8,19 @@ Layer 3 (beside :mod:`nps.rig`): imports :mod:`nps.noise`, :mod:`nps.rotor` and 
 - :mod:`nps.mission.footprint`: L_A(t), L_Amax, SEL and contour areas; :mod:`nps.mission.certification`: EPNL.
 """
 
-from nps.mission.certification import certify
-from nps.mission.footprint import mission_footprint
-from nps.mission.propagation import propagate
-from nps.mission.trajectory import mission_path
+from typing import TYPE_CHECKING
 
-__all__ = ["certify", "mission_footprint", "propagate", "mission_path"]
+from nps.core.lazy import lazy_face
+
+if TYPE_CHECKING:  # imported on first use (nps.core.lazy): a job imports only the modules its stage runs
+    from nps.mission.certification import certify
+    from nps.mission.footprint import mission_footprint
+    from nps.mission.propagation import propagate
+    from nps.mission.trajectory import mission_path
+
+__getattr__, __dir__, __all__ = lazy_face(__name__, {
+    "nps.mission.certification": ("certify",),
+    "nps.mission.footprint": ("mission_footprint",),
+    "nps.mission.propagation": ("propagate",),
+    "nps.mission.trajectory": ("mission_path",),
+})

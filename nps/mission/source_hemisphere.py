@@ -81,6 +81,7 @@ def source_hemisphere_table(
     broadband_on: bool = True,
     reference_radius_m: float | None = None,
     tone_sum: str = "coherent",
+    broadband_msp: Mapping[str, np.ndarray] | None = None,
 ) -> pd.DataFrame:
     """Source-hemisphere product (module doc) from the hemisphere set's signals of every rotor.
 
@@ -89,6 +90,7 @@ def source_hemisphere_table(
     ``reference_radius_m``: when given, the levels heard at the observers' radius r are referred
     to this radius by spherical spreading (+20 log10(r / r_ref); bands at the floor stay there).
     ``tone_sum``: how the rotors' tones add (``coherent`` or ``incoherent``, nps.noise.signals.TONE_SUMS).
+    ``broadband_msp``: the rotors' BPM band MSP (the others get Pegg's), as in ``metrics_tables``.
     """
     for col in ("vx_mps", "vy_mps", "vz_mps"):
         if col not in observers.columns:
@@ -97,7 +99,8 @@ def source_hemisphere_table(
     if not np.allclose(observers[["vx_mps", "vy_mps", "vz_mps"]].to_numpy(float), velocity[None, :], atol=1e-9):
         raise ValueError("observers: a source hemisphere needs observers moving with the aircraft (moving: true)")
     radius = hemisphere_radius_m(observers)
-    _, bands, _ = metrics_tables(signals, observers, trim, solidity, None, hsi_signals, broadband_on, tone_sum=tone_sum)
+    _, bands, _ = metrics_tables(signals, observers, trim, solidity, None, hsi_signals, broadband_on,
+                                 broadband_msp=broadband_msp, tone_sum=tone_sum)
     keep = bands[(bands["band"] >= PRODUCT_BANDS[0]) & (bands["band"] <= PRODUCT_BANDS[-1])].copy()
     if reference_radius_m is not None:
         if not (np.isfinite(reference_radius_m) and reference_radius_m > 0):

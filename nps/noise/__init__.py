@@ -12,11 +12,21 @@ table into its compact sources.
 - :mod:`nps.noise.hsi`: the high-speed-impulsive post-processor (kernels in :mod:`nps.noise.hsi_kernels`).
 """
 
-from nps.noise.acoustics import Observers, TimeGrid, radiate_arrays
-from nps.noise.metrics import a_weighting_db, metrics_tables
-from nps.noise.observers import hemisphere, observer_set
-from nps.noise.sources import radiate_rotor, rotor_sources
-from nps.noise.spectra import narrowband_msp, third_octave_bands
+from typing import TYPE_CHECKING
 
-__all__ = ["Observers", "TimeGrid", "radiate_arrays", "a_weighting_db", "metrics_tables", "hemisphere",
-           "observer_set", "radiate_rotor", "rotor_sources", "narrowband_msp", "third_octave_bands"]
+from nps.core.lazy import lazy_face
+
+if TYPE_CHECKING:  # imported on first use (nps.core.lazy): a job imports only the modules its stage runs
+    from nps.noise.acoustics import Observers, TimeGrid, radiate_arrays
+    from nps.noise.metrics import a_weighting_db, metrics_tables
+    from nps.noise.observers import hemisphere, observer_set
+    from nps.noise.sources import radiate_rotor, rotor_sources
+    from nps.noise.spectra import narrowband_msp, third_octave_bands
+
+__getattr__, __dir__, __all__ = lazy_face(__name__, {
+    "nps.noise.acoustics": ("Observers", "TimeGrid", "radiate_arrays"),
+    "nps.noise.metrics": ("a_weighting_db", "metrics_tables"),
+    "nps.noise.observers": ("hemisphere", "observer_set"),
+    "nps.noise.sources": ("radiate_rotor", "rotor_sources"),
+    "nps.noise.spectra": ("narrowband_msp", "third_octave_bands"),
+})

@@ -24,6 +24,16 @@ def _values(table: pd.DataFrame, metric: str) -> np.ndarray:
     return values / 1e3 if metric == "power_W" else values
 
 
+def _broadband_switched(group: pd.DataFrame) -> pd.Series:
+    """Per row of one aircraft × segment: whether its rotors' broadband models (``<rotor>_broadband``) differ
+    from the case's most frequent combination (``models.broadband: auto`` chooses by the operating point)."""
+    columns = [c for c in group.columns if c.endswith("_broadband") and not pd.api.types.is_numeric_dtype(group[c])]
+    if not columns:
+        return pd.Series(False, index=group.index)
+    combination = group[columns].astype(str).agg("/".join, axis=1)
+    return combination != combination.mode().iloc[0]
+
+
 def _case_label(aircraft: str, segment: str, name: str, n_aircraft: int) -> str:
     return f"{aircraft} {segment} ({name})" if n_aircraft > 1 else f"{segment} ({name})"
 
@@ -31,24 +41,37 @@ def _case_label(aircraft: str, segment: str, name: str, n_aircraft: int) -> str:
 def metrics_against_variables(table: pd.DataFrame, variables: Sequence[str], metrics: Sequence[str], title: str, path) -> None:
     """Grid of panels, one row per metric and one column per variable: the metric's mean over the other
     variables at each value of the variable (its main effect), one line per aircraft × segment; a variable
-    with more than :data:`MAX_LEVELS` values (a Latin hypercube) shows every design as a point instead."""
+    with more than :data:`MAX_LEVELS` values (a Latin hypercube) shows every design as a point instead. Points whose
+    rotors' broadband models differ from the case's other designs (:func:`_broadband_switched`) are drawn open,
+    with a note; a whole-number variable gets whole-number ticks."""
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import MaxNLocator
 
     fig, axes = plt.subplots(len(metrics), len(variables), figsize=(4.2 * len(variables) + 2.5, 2.8 * len(metrics)),
                              squeeze=False, sharex="col")
     colours = plt.get_cmap("tab10")
     cases = list(table.groupby(["aircraft", "segment"], sort=False))
     n_aircraft = table["aircraft"].nunique()
+    any_switch = False
     for i, metric in enumerate(metrics):
         for j, variable in enumerate(variables):
             ax = axes[i, j]
             for k, ((aircraft, segment), group) in enumerate(cases):
                 label = _case_label(aircraft, segment, group["segment_name"].iloc[0], n_aircraft)
+                switched = _broadband_switched(group)
+                any_switch |= bool(switched.any())
                 if group[variable].nunique() > MAX_LEVELS:  # a sampled design: every design, no main effect
-                    ax.plot(group[variable].to_numpy(float), _values(group, metric), ".", color=colours(k % 10), ms=4, label=label)
-                    continue
-                means = group.assign(_m=_values(group, metric)).groupby(variable, sort=True)["_m"].mean()
-                ax.plot(means.index.to_numpy(), means.to_numpy(), "o-", color=colours(k % 10), ms=3.5, lw=1.4, label=label)
+                    x, y = group[variable].to_numpy(float), _values(group, metric)
+                    ax.plot(x, y, ".", color=colours(k % 10), ms=4, label=label)
+                else:
+                    means = group.assign(_m=_values(group, metric)).groupby(variable, sort=True)["_m"].mean()
+                    x, y = means.index.to_numpy(), means.to_numpy()
+                    ax.plot(x, y, "o-", color=colours(k % 10), ms=3.5, lw=1.4, label=label)
+                    switched = switched.groupby(group[variable]).any().reindex(means.index)
+                open_ = switched.to_numpy(bool)
+                ax.plot(x[open_], y[open_], "o", mfc="white", mec=colours(k % 10), ms=5.5, zorder=3)
+            if _integer_valued(table[variable]):
+                ax.xaxis.set_major_locator(MaxNLocator(integer=True))
             ax.grid(alpha=0.3)
             if j == 0:
                 ax.set_ylabel(_label(metric))
@@ -57,8 +80,21 @@ def metrics_against_variables(table: pd.DataFrame, variables: Sequence[str], met
     handles, labels = axes[0, 0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="center right", fontsize=8, frameon=False)
     fig.suptitle(title)
-    fig.tight_layout(rect=(0, 0, 0.8, 0.97))
+    if any_switch:
+        fig.text(0.01, 0.005, "open markers: the point is or includes designs whose broadband model differs from the "
+                 "case's other designs (trade-table columns <rotor>_broadband):\nmodels.broadband auto chooses Pegg or "
+                 "BPM per rotor by its operating point, so a step there is the change of model, not a trend",
+                 fontsize=8, ha="left", va="bottom")
+    fig.tight_layout(rect=(0, 0.045 if any_switch else 0, 0.8, 0.97))
     save_figure(fig, path)
+
+
+def _integer_valued(values: pd.Series) -> bool:
+    """Whether a design variable takes whole numbers only (a blade count): integer axis ticks."""
+    if not pd.api.types.is_numeric_dtype(values) or pd.api.types.is_bool_dtype(values):
+        return False
+    numbers = values.to_numpy(float)
+    return bool(np.all(numbers == np.round(numbers)))
 
 
 def pareto_figure(table: pd.DataFrame, colour_by: str, noise: str, title: str, path) -> None:
@@ -71,12 +107,14 @@ def pareto_figure(table: pd.DataFrame, colour_by: str, noise: str, title: str, p
     nrows = int(np.ceil(len(cases) / ncols))
     fig, axes = plt.subplots(nrows, ncols, figsize=(4.8 * ncols + 1.0, 3.8 * nrows), squeeze=False, layout="constrained")
     n_aircraft = table["aircraft"].nunique()
-    colour_values = table[colour_by].to_numpy(float)
+    numeric = pd.api.types.is_numeric_dtype(table[colour_by]) and not pd.api.types.is_bool_dtype(table[colour_by])
+    codes, levels = (table[colour_by].to_numpy(float), None) if numeric else pd.factorize(table[colour_by], sort=True)
+    colour_values = pd.Series(np.asarray(codes, float), index=table.index)  # text and booleans: their sorted levels
     norm = plt.Normalize(colour_values.min(), colour_values.max())
     scatter = None
     for ax, ((aircraft, segment), group) in zip(axes.flat, cases):
         power, level = _values(group, "power_W"), group[noise].to_numpy(float)
-        scatter = ax.scatter(power, level, c=group[colour_by].to_numpy(float), cmap="viridis", norm=norm, s=22)
+        scatter = ax.scatter(power, level, c=colour_values[group.index].to_numpy(), cmap="viridis", norm=norm, s=22)
         front = group["pareto"].to_numpy(bool)
         order = np.argsort(power[front])
         ax.plot(power[front][order], level[front][order], "-", color="crimson", lw=1.2, label="Pareto front")
@@ -88,7 +126,9 @@ def pareto_figure(table: pd.DataFrame, colour_by: str, noise: str, title: str, p
     for ax in list(axes.flat)[len(cases):]:
         ax.set_visible(False)
     axes.flat[0].legend(fontsize=8, loc="best")
-    fig.colorbar(scatter, ax=axes, label=colour_by, shrink=0.8)
+    bar = fig.colorbar(scatter, ax=axes, label=colour_by, shrink=0.8)
+    if levels is not None:
+        bar.set_ticks(range(len(levels)), labels=[str(level) for level in levels])
     fig.suptitle(title)
     save_figure(fig, path)
 

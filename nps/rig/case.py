@@ -35,7 +35,6 @@ from typing import Mapping
 
 import numpy as np
 import pandas as pd
-import yaml
 
 from nps.core import frames
 from nps.rotor.bet import DiskGrid
@@ -162,6 +161,8 @@ def read_microphone_file(path: str | Path) -> np.ndarray:
     if not path.is_file():
         raise ObserverError(f"{path}: microphone file not found")
     if path.suffix.lower() in (".yaml", ".yml"):
+        import yaml  # here: a YAML microphone file needs it, not the wake jobs that import this module
+
         with open(path) as handle:
             try:
                 rows = yaml.safe_load(handle)

@@ -67,6 +67,11 @@ _VITERNA_CD_MAX_0 = 1.11
 _VITERNA_CD_MAX_AR = 0.018
 _REVERSED_LIFT_FACTOR = 0.7
 _EXTENSION_STEP_DEG = 2.0
+# bounds no section's lift coefficients reach (|c_l| stays below about 3 even with high-lift devices, the lift
+# slope near alpha = 0 near 2 pi per rad, 2 pi/sqrt(1 - M^2) at M 0.9): beyond them the CL column holds
+# something else, c_l in percent or angles in radians where degrees belong
+_CL_MAX_PLAUSIBLE = 5.0
+_LIFT_SLOPE_MAX_PER_RAD = 30.0
 
 
 class AirfoilError(ValueError):
@@ -232,6 +237,7 @@ class AirfoilTable:
         slope = float((self.cl(hi, m0) - self.cl(lo, m0)) / (hi - lo))
         if not slope > 0.0:
             raise AirfoilError(f"{self.source}: CL: expected a positive lift slope near alpha = 0, got {slope:.4g} per rad")
+        _check_lift_magnitudes(self.cl, slope, self.source)
         alpha0 = float(np.clip(0.0, self.cd.alpha_rad[0], self.cd.alpha_rad[-1]))
         object.__setattr__(self, "lift_slope_per_rad", slope)
         object.__setattr__(self, "cd0", float(self.cd(alpha0, m0)))
@@ -242,6 +248,19 @@ class AirfoilTable:
 
     def coefficients(self, alpha_rad, mach):
         return self.cl(alpha_rad, mach), self.cd(alpha_rad, mach), self.cm(alpha_rad, mach)
+
+
+def _check_lift_magnitudes(cl: PolarTable, slope_per_rad: float, source: str) -> None:
+    """Refuse lift coefficients no section has (:data:`_CL_MAX_PLAUSIBLE`, :data:`_LIFT_SLOPE_MAX_PER_RAD`), naming
+    the likely cause: c_l in percent, or (plausible c_l, steep slope) angles in radians in a degree column."""
+    peak = float(np.abs(cl.values).max())
+    found = f"|c_l| up to {peak:.4g} and a lift slope of {slope_per_rad:.4g} per rad near alpha = 0"
+    plausible = f"a section's c_l stays within about +-3 and its slope near 2 pi = {2 * math.pi:.3g} per rad"
+    if peak > _CL_MAX_PLAUSIBLE:
+        raise AirfoilError(f"{source}: CL: {found}, but {plausible}: the CL column looks like percent (c_l x 100); "
+                           "divide it by 100")
+    if slope_per_rad > _LIFT_SLOPE_MAX_PER_RAD:
+        raise AirfoilError(f"{source}: CL: {found}, but {plausible}: the angles look like radians; give alpha in degrees")
 
 
 # ---------------------------------------------------------------------------------------------

@@ -156,9 +156,9 @@ def run_chain(campaign: Campaign, aircraft: str, segment: str, cache: StageCache
         if hsi_segment:
             inputs["hsi"] = (cache.run("hsi", {"signals": (signals, "signals"), **base},
                                        {**stage_params("hsi", case), **where}), "hsi")
+        inputs.update({"disks": disks} if bpm else {})
         if obsset in observer_sets:
-            extra = {"disks": disks} if bpm else {}
-            result["metrics"][obsset] = cache.run("metrics", {**inputs, **extra}, {**stage_params("metrics", case), **where})
+            result["metrics"][obsset] = cache.run("metrics", inputs, {**stage_params("metrics", case), **where})
         if source_set and obsset == sets[-1]:
             result["source_hemisphere"] = cache.run("source_hemisphere", inputs,
                                                     {**stage_params("source_hemisphere", case), **same})

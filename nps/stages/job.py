@@ -8,8 +8,13 @@ to the job's ``threads`` before anything imports numba. The stage's report goes 
 ``log:`` file; an error is written there too and to stderr, and the job exits with status 1: an
 expected error (a refused input, :func:`expected_errors`) as one line ``error: stage '<stage>': ...``,
 any other error with its traceback (real module paths); ``NPS_DEBUG=1`` shows every traceback. The log's last line gives the job's start-up (process
-start to the stage function imported) and work (the stage function) in seconds, which
+start to the stage function imported) and work (the stage function) in seconds, and for a job that ran a numba
+kernel the part of the work that imported numba (on the first kernel call, nps.core.jit), which
 ``benchmarks/campaign_times.py`` tabulates per rule.
+
+A job imports only what its stage runs: the package faces import their modules on first use (nps.core.lazy),
+numba is imported by the first kernel call, matplotlib by the figure code, the configuration code not at all
+(the workflow validated the configuration once, and the params carry it).
 """
 
 from __future__ import annotations
@@ -80,4 +85,11 @@ def run_job(snakemake, stage: str) -> None:
             sys.stderr.write(text)
             sys.exit(1)
         log.write(report if report.endswith("\n") else report + "\n")
-        log.write(f"timing: start-up {start_up_s:.3f} s, work {work_s:.3f} s\n")
+        log.write(f"timing: start-up {start_up_s:.3f} s, work {work_s:.3f} s{numba_note()}\n")
+
+
+def numba_note() -> str:
+    """``, numba import S s`` when the job ran a kernel (numba imported on the first call, nps.core.jit); else ``""``."""
+    jit = sys.modules.get("nps.core.jit")
+    seconds = getattr(jit, "numba_import_s", 0.0) if jit is not None else 0.0
+    return f", numba import {seconds:.3f} s" if seconds > 0.0 else ""

@@ -10,8 +10,8 @@ outputs: ``metrics`` (observer, elevation_deg, azimuth_deg, oaspl_db, oaspl_dba,
 levels …), ``bands`` (observer × source × band), ``figure`` (spectrum of the loudest observer).
 params: ``rotors``, ``solidity`` (rotor → σ), ``atmosphere`` (altitude_m, isa_delta_K,
 relative_humidity_pct), ``broadband`` (``pegg``, ``bpm``, ``none`` or ``auto``; true/false = pegg/none,
-:func:`nps.app.config.broadband_model`; written to the metadata as given; ``auto``: per rotor from the trim,
-:func:`nps.app.config.rotor_broadband_models`, BPM for the rotors outside Pegg's data range and Pegg for the
+:func:`nps.app.broadband.broadband_model`; written to the metadata as given; ``auto``: per rotor from the trim,
+:func:`nps.app.broadband.rotor_broadband_models`, BPM for the rotors outside Pegg's data range and Pegg for the
 others, recorded as ``broadband_rotors``), ``absorption`` (boolean),
 ``harmonics`` (first and last main-rotor BPF harmonic of BVISPL), with BPM ``rotor_configs`` (rotor →
 validated aircraft-configuration entry), ``aircraft``, ``segment``, ``obsset``, ``variant``.
@@ -38,7 +38,7 @@ import numpy as np
 from nps.app import validity
 from nps.core.atmosphere import isa
 from nps.noise.broadband.pegg import pegg_outside_range
-from nps.app.config import broadband_model, rotor_broadband_models
+from nps.app.broadband import broadband_model, rotor_broadband_models
 from nps.app.io import artifact_rows, check_provenance, read_signals, read_table, rotor_path, write_table
 from nps.noise.metrics import STUDY_BANDS, metrics_tables
 from nps.noise.observers import OBSERVER_STAGES
@@ -67,9 +67,10 @@ def _bpm_band_msp(inputs: dict, params: dict, trim, observers, atmosphere, names
     return out, notes
 
 
-def _broadband(inputs: dict, params: dict, models: dict, trim, observers, state) -> tuple[dict | None, list[str]]:
-    """BPM band MSP of the rotors ``models`` gives BPM (None without any) and the model-range warnings: Pegg
-    outside his data range for the Pegg rotors (suggesting BPM), BPM elements outside RP-1218's range."""
+def broadband_sources(inputs: dict, params: dict, models: dict, trim, observers) -> tuple[dict | None, list[str]]:
+    """BPM band MSP of the rotors ``models`` gives BPM (None without any; from the input ``disks`` with the params
+    ``rotor_configs`` and ``atmosphere``) and the model-range warnings: Pegg outside his data range for the Pegg
+    rotors (suggesting BPM), BPM elements outside RP-1218's range. The metrics and source-hemisphere stages'."""
     notes = []
     for name in [name for name, model in models.items() if model == "pegg"]:
         row = trim_row(trim, name, str(inputs["trim"]))
@@ -80,9 +81,11 @@ def _broadband(inputs: dict, params: dict, models: dict, trim, observers, state)
     bpm_rotors = [name for name, model in models.items() if model == "bpm"]
     if not bpm_rotors:
         return None, notes
-    if "disks" not in inputs or "rotor_configs" not in params:
+    if "disks" not in inputs or "rotor_configs" not in params or "atmosphere" not in params:
         raise ValueError(f"broadband '{params['broadband']}' needs the input 'disks' (the rotors' disk tables) "
-                         "and the param 'rotor_configs'")
+                         "and the params 'rotor_configs' and 'atmosphere'")
+    atm = params["atmosphere"]
+    state = isa(atm["altitude_m"], atm["isa_delta_K"], atm["relative_humidity_pct"])
     bpm_msp, bpm_notes = _bpm_band_msp(inputs, params, trim, observers, state, bpm_rotors)
     return bpm_msp, notes + bpm_notes
 
@@ -120,7 +123,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     state = isa(atm["altitude_m"], atm["isa_delta_K"], atm["relative_humidity_pct"])
     atmosphere = state if params["absorption"] else None
     harmonics = tuple(int(h) for h in params["harmonics"])
-    bpm_msp, notes = _broadband(inputs, params, models, trim, observers, state)
+    bpm_msp, notes = broadband_sources(inputs, params, models, trim, observers)
     for note in notes:
         warnings.warn(note)
     tone_sum = params["tone_sum"] if "tone_sum" in params else TONE_SUMS[0]

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from nps.app.config import broadband_model
+from nps.app.broadband import broadband_model
 from nps.app.io import check_provenance, read_metadata, read_table, rotor_path, write_table
 from nps.app.validity import pegg_range_notes
 from nps.app.study import STAGES, segment_summary

@@ -10,7 +10,15 @@ Layer 2 (beside :mod:`nps.noise`, which it does not import): imports :mod:`nps.r
 - :mod:`nps.wake.interaction`: every rotor loaded in all rotors' free wakes.
 """
 
-from nps.wake.prescribed import WAKE_COLUMNS, WakeModel
-from nps.wake.vortex import VortexModel
+from typing import TYPE_CHECKING
 
-__all__ = ["WAKE_COLUMNS", "VortexModel", "WakeModel"]
+from nps.core.lazy import lazy_face
+
+if TYPE_CHECKING:  # imported on first use (nps.core.lazy): a job imports only the modules its stage runs
+    from nps.wake.prescribed import WAKE_COLUMNS, WakeModel
+    from nps.wake.vortex import VortexModel
+
+__getattr__, __dir__, __all__ = lazy_face(__name__, {
+    "nps.wake.prescribed": ("WAKE_COLUMNS", "WakeModel"),
+    "nps.wake.vortex": ("VortexModel",),
+})

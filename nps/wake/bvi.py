@@ -57,7 +57,6 @@ from typing import Mapping
 
 import numpy as np
 import pandas as pd
-from scipy import special
 
 from nps.core import periods
 from nps.core.jit import kernel, prange
@@ -232,6 +231,8 @@ def remove_low_harmonics(values: np.ndarray, highest: int) -> np.ndarray:
 
 def sears(k) -> np.ndarray:
     """Sears function S(k) (complex, e^{iωt} convention, gust referred to the mid-chord)."""
+    from scipy import special  # here: only the unsteady BVI loads need it, not every job importing the wake
+
     k = np.asarray(k, dtype=float)
     out = np.ones(k.shape, dtype=complex)
     pos = k > 0.0

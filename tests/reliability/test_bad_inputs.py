@@ -222,7 +222,8 @@ CASES = [
     Case("trim_missing_aircraft_file", lambda b, out: trim_cmd(out, str(out / "none.yaml")), ("none.yaml", "file not found")),
     Case("aircraft_yaml_syntax", lambda b, out: trim_cmd(out, _text(out / "aircraft/helicopter.yaml", "name: [x\nrotors: 1\n")),
          ("helicopter.yaml", "line 2", "not valid YAML")),
-    Case("out_is_a_directory", lambda b, out: trim_cmd(out)[:-1] + [str(out)], ("is a directory", "trim Parquet file")),
+    Case("out_is_a_directory", lambda b, out: ((out / "t.parquet").mkdir(), trim_cmd(out))[1],  # named as a Parquet file
+         ("is a directory", "trim Parquet file")),
     Case("out_under_a_file", lambda b, out: loads_cmd(b, out)[:-1] + [str(b.a_file / "loads")],
          ("a_file/loads", "output directory")),
     Case("out_dir_is_a_file", lambda b, out: acoustics_cmd(b, out)[:-1] + [str(b.a_file)], ("a_file", "output directory")),

@@ -220,7 +220,7 @@ CASES = [
          ("sig/main.parquet", "lies in the input directory signals")),
     Case("trim_out_is_the_aircraft_file", lambda b, out: _replace(
         trim_cmd(out, aircraft_file(out, lambda a: None)), "--out", str(out / "aircraft" / "helicopter.yaml")),
-         ("helicopter.yaml", "is the input --aircraft")),
+         ("--out", "expected a path ending in .parquet", "helicopter.yaml")),  # no Parquet name: refused first
     Case("loads_out_dir_is_the_trim", lambda b, out: _replace(
         loads_cmd(b, out, trim=_copy_of(b.trim, out / "t")), "--out-dir", str(out / "t" / "trim.parquet")),
          ("trim.parquet", "is the input trim")),
@@ -232,12 +232,12 @@ CASES = [
         observers_cmd(b, out, AHEAD_ONE), "--trim", _copy_of(b.trim, out / "t")), "--out", str(out / "t" / "trim.parquet")),
          ("trim.parquet", "is the input trim")),
     Case("observers_out_is_the_config", lambda b, out: _replace(observers_cmd(b, out, AHEAD_ONE), "--out", str(out / "config.yaml")),
-         ("config.yaml", "is the input --config")),
+         ("--out", "expected a path ending in .parquet", "config.yaml")),
     Case("tones_csv_is_the_aircraft_file", lambda b, out: ["tones", "--aircraft", aircraft_file(out, lambda a: None), "--trim",
                                                           str(b.trim), "--signals", str(b.signals), "--out", str(out / "t.parquet"),
                                                           "--csv", str(out / "aircraft" / "helicopter.yaml"),
                                                           "--spectra-out", str(out / "s.parquet")],
-         ("tones_csv", "helicopter.yaml: is the input --aircraft")),
+         ("--csv", "expected a path ending in .csv", "helicopter.yaml")),
     Case("wake_dir_is_the_loads_dir", lambda b, out: _wake_into_loads(b, out), ("is the input loads",)),
     Case("rotor_out_dir_holds_the_rotor_file", lambda b, out: _replace(
         rotor_cmd(out, rotor_file=edited_rotor(out)), "--out-dir", str(out / "rigs" / "itr")),

@@ -153,12 +153,32 @@ def test_metrics_command_chooses_the_model(tmp_path, capsys, repo_root):
     assert "oaspl_broadband_db" in read_table(tmp_path / "m.parquet").columns
 
 
-def test_source_hemisphere_refuses_bpm_before_reading():
-    """The source-hemisphere product has Pegg or no broadband: ``bpm`` is a clear error, not Pegg in disguise."""
+def test_source_hemisphere_takes_the_metrics_broadband(tmp_path):
+    """The source-hemisphere product with ``bpm`` holds the metrics stage's BPM band levels (no absorption, observers
+    on a hemisphere at its reference radius), not Pegg's: footprints and certification agree with the metrics."""
+    from nps.mission.source_hemisphere import PRODUCT_BANDS, observer_direction
     from nps.stages.source_hemisphere import run as source_hemisphere
 
-    with pytest.raises(ValueError, match="'bpm' is not available for source hemispheres"):
-        source_hemisphere({"signals": "missing"}, {}, {"rotors": ["main"], "broadband": "bpm"})
+    aircraft = _aircraft()
+    _write_inputs(tmp_path, aircraft)
+    azimuth, elevation = np.array([0.0, 90.0, 200.0]), np.array([-10.0, -40.0, -70.0])
+    positions = HUB + 50.0 * observer_direction(np.radians(azimuth), np.radians(elevation))
+    write_table(pd.DataFrame({"observer": np.int32([0, 1, 2]), "x_m": positions[:, 0], "y_m": positions[:, 1],
+                              "z_m": positions[:, 2], "vx_mps": 0.0, "vy_mps": 0.0, "vz_mps": 0.0,
+                              "elevation_deg": elevation, "azimuth_deg": azimuth}), tmp_path / "obs.parquet", stage="observers")
+    _, bands = _run(tmp_path, aircraft, "bpm")
+    inputs = {"signals": tmp_path / "sig", "trim": tmp_path / "trim.parquet", "observers": tmp_path / "obs.parquet",
+              "disks": tmp_path / "loads"}
+    params = {"rotors": ["main"], "solidity": rotor_solidities(aircraft), "broadband": "bpm", "reference_radius_m": 50.0,
+              "rotor_configs": {"main": aircraft["rotors"][0]}, "aircraft": "helicopter", "segment": "seg1",
+              "obsset": "obs", "variant": "base",
+              "atmosphere": {"altitude_m": 0.0, "isa_delta_K": 0.0, "relative_humidity_pct": 70.0}}
+    source_hemisphere(inputs, {"hemisphere": tmp_path / "h.parquet"}, params)
+    product = read_table(tmp_path / "h.parquet")
+    expected = bands[(bands.source == "broadband") & bands.band.between(PRODUCT_BANDS[0], PRODUCT_BANDS[-1])]
+    got = product[product.source == "broadband"].sort_values(["observer", "band"])
+    np.testing.assert_allclose(got.level_db.to_numpy(), expected.sort_values(["observer", "band"]).level_db.to_numpy(), atol=1e-9)
+    assert read_metadata(tmp_path / "h.parquet")["broadband"] == "bpm"
 
 
 # --- auto: BPM for the rotors outside Pegg's data range, Pegg for the others ---------------------------------------
@@ -243,8 +263,15 @@ def test_auto_without_disks_names_the_input(tmp_path):
     assert not (tmp_path / "m.parquet").exists()
 
 
-def test_source_hemisphere_refuses_auto_before_reading():
+def test_source_hemisphere_auto_without_disks_names_the_input(tmp_path):
+    """``auto`` with a rotor outside Pegg's range needs the disk tables in the source-hemisphere stage too."""
     from nps.stages.source_hemisphere import run as source_hemisphere
 
-    with pytest.raises(ValueError, match="'auto' is not available for source hemispheres"):
-        source_hemisphere({"signals": "missing"}, {}, {"rotors": ["main"], "broadband": "auto"})
+    aircraft = _two_rotor_inputs(tmp_path, ["main", "tail"])
+    params = {"rotors": ["main", "tail"], "solidity": rotor_solidities(aircraft), "broadband": "auto",
+              "reference_radius_m": 50.0, "rotor_configs": {r["name"]: r for r in aircraft["rotors"]},
+              "atmosphere": {"altitude_m": 0.0, "isa_delta_K": 0.0, "relative_humidity_pct": 70.0}}
+    inputs = {"signals": tmp_path / "sig", "trim": tmp_path / "trim.parquet", "observers": tmp_path / "obs.parquet"}
+    with pytest.raises(ValueError, match="broadband 'auto' needs the input 'disks'"):
+        source_hemisphere(inputs, {"hemisphere": tmp_path / "h.parquet"}, params)
+    assert not (tmp_path / "h.parquet").exists()

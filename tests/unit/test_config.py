@@ -40,6 +40,16 @@ def test_bundled_configuration_is_valid(repo_root):
     assert campaign.rotor_names("hexacopter") == ["front", "front_right", "rear_right", "rear", "rear_left", "front_left"]
 
 
+def test_bundled_campaign_runs_broadband_auto_and_thesis_pegg_differs_only_there(repo_root):
+    """config/config.yaml runs the broadband model valid for each rotor (auto); config/thesis_pegg.yaml, the thesis'
+    Pegg-only reproduction, is the same campaign with models.broadband: pegg."""
+    bundled, thesis = read_yaml(repo_root / "config/config.yaml"), read_yaml(repo_root / "config/thesis_pegg.yaml")
+    assert bundled["models"]["broadband"] == "auto" and thesis["models"]["broadband"] == "pegg"
+    thesis["models"]["broadband"] = "auto"
+    assert thesis == bundled
+    assert load_campaign(read_yaml(repo_root / "config/thesis_pegg.yaml"), "config/thesis_pegg.yaml", root=repo_root).broadband_model() == "pegg"
+
+
 def test_missing_required_field(config_tree):
     message = _aircraft_error(config_tree, lambda d: d["rotors"][0].pop("chord_m"))
     assert "helicopter.yaml: rotors[0].chord_m: required field is missing" in message
@@ -90,11 +100,21 @@ def test_campaign_names_missing_segment(config_tree):
         load_campaign(config, "config.yaml", root=config_tree)
 
 
-def test_segment_names_missing_aircraft(config_tree):
+def test_segment_with_an_aircraft_outside_the_campaign_is_accepted(config_tree):
+    """A mission may list more aircraft than the campaign (another campaign's, or none on file): only the
+    campaign's aircraft run."""
     path = config_tree / "config" / "missions" / "demo.yaml"
     _edit_yaml(path, lambda d: d["segments"][2]["aircraft"].__setitem__("blimp", {"forward_speed_mps": 10.0, "climb_speed_mps": 0.0}))
     config = read_yaml(config_tree / "config" / "config.yaml")
-    with pytest.raises(ConfigError, match=r"demo\.yaml: segments\[2\]\.aircraft\.blimp: names an aircraft that does not exist"):
+    assert "blimp" not in load_campaign(config, "config.yaml", root=config_tree).aircraft
+
+
+def test_segment_without_a_campaign_aircraft_suggests_the_misspelt_one(config_tree):
+    path = config_tree / "config" / "missions" / "demo.yaml"
+    _edit_yaml(path, lambda d: d["segments"][2]["aircraft"].__setitem__("tandm", d["segments"][2]["aircraft"].pop("tandem")))
+    config = read_yaml(config_tree / "config" / "config.yaml")
+    with pytest.raises(ConfigError, match=r"demo\.yaml: segments\[2\]\.aircraft: expected speeds for aircraft 'tandem' of "
+                                          r"the campaign \(did you mean 'tandm'\?\)"):
         load_campaign(config, "config.yaml", root=config_tree)
 
 

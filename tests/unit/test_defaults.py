@@ -133,6 +133,21 @@ def test_every_command_option_of_a_schema_field_defaults_to_the_schema(module, m
     assert not wrong, wrong
 
 
+@pytest.mark.parametrize("command", CLI_COMMANDS)
+def test_every_command_option_has_a_help_text(command, monkeypatch):
+    """``python -m nps <command> --help`` describes every option and argument: a help text that is more than the
+    option's own name or its schema field's (the fallback of nps.cli.option when the schema has no description)."""
+    import argparse
+
+    bare = []
+    for action in _parser_of(command, monkeypatch)._actions:
+        names = {action.dest, getattr(action, "schema_field", "").rsplit(".", 1)[-1]}
+        text = (action.help or "").strip()
+        if text in names | {"", argparse.SUPPRESS}:
+            bare.append(f"{action.option_strings or action.dest}: help {action.help!r}")
+    assert not bare, bare
+
+
 def test_the_wake_command_sets_every_wake_option_of_the_workflow(monkeypatch):
     """Every field of the config ``wake`` section (the free wake's included) is an option of ``python -m nps wake``."""
     fields = {getattr(a, "schema_field", None) for a in _parser_of("wake", monkeypatch)._actions}

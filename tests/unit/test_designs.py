@@ -98,7 +98,7 @@ def test_preview_fidelity_sets_the_preset_and_a_config_variable_wins(root):
     ([{"path": "aircraft.tandem.gross_weight_kg", "values": [1.0]}], "variables[0].path", "aircraft 'tandem'"),
     ([{"path": "mission.seg9.forward_speed_mps", "values": [1.0]}], "variables[0].path", "segment 'seg9'"),
     ([{"path": "resolution.n_psii", "values": [1]}], "variables[0].path", "no field 'n_psii'"),
-    ([{"path": OMEGA, "values": [-5.0]}], "rotors[0].omega_rad_s", "expected"),
+    ([{"path": OMEGA, "values": [-5.0]}], "variables[0].values[0]", "expected a number > 0, got -5.0 for " + OMEGA),
     ([{"path": OMEGA, "range": {"low": 30.0, "high": 20.0}}], "variables[0].range", "low < high"),
 ])
 def test_bad_study_names_the_file_and_field(root, variables, field, expected):

@@ -192,3 +192,54 @@ def test_the_spectrum_names_its_loudest_observer_once_by_direction(tmp_path):
     assert title == "heli seg3: observer 24 (loudest, straight below)", title
     assert (tmp_path / "s.png").stat().st_size > 10_000
     plt.close(fig)
+
+
+def test_the_front_page_of_a_large_campaign_parses_without_a_system_message(tmp_path):
+    """The front page as Snakemake renders it (Jinja with trim_blocks and lstrip_blocks, then docutils'
+    publish_parts): a campaign of 4 aircraft × 6 segments × 20 figures gives no line over docutils' line-length
+    limit (10,000 characters: one longer line replaces the page by "System Message: ERROR/3") and every figure
+    is linked from the index."""
+    from dataclasses import dataclass
+    from types import SimpleNamespace
+
+    from docutils.core import publish_parts
+    from jinja2 import Environment
+
+    @dataclass(frozen=True, order=True)
+    class Category:
+        name: str
+
+    categories = {}
+    for aircraft in ("coaxial", "helicopter", "hexacopter", "tandem"):
+        categories[Category(aircraft)] = {
+            Category(f"seg{k}, 6 deg descent (BVI)"): [
+                SimpleNamespace(path=Path(f"results/{aircraft}/seg{k}/figures/figure_{n:02d}.png"), name=f"figure_{n:02d}.png",
+                                labels={"figure": f"{aircraft} seg{k} figure {n}"}) for n in range(20)]
+            for k in range(1, 7)}
+    summary = SimpleNamespace(path=tmp_path / "results_summary.html")  # inserted as a file: its lines are not limited
+    summary.path.write_text('<div class="nps-page">' + "<tr><td>helicopter</td><td>seg3</td></tr>" * 2000 + "</div>\n")
+    config = SimpleNamespace(config={"observer_sets": {"hemisphere": {"radius_R": 3.0}}})
+    text = Environment(trim_blocks=True, lstrip_blocks=True).from_string(
+        (REPO / "workflow/report/workflow.rst").read_text()).render(snakemake=config, categories=categories, files=[summary])
+    assert max(len(line) for line in text.splitlines()) < 1000
+    html = publish_parts(text, writer="html", settings_overrides={"report_level": 1})["html_body"]
+    assert "System Message" not in html and "ERROR" not in html
+    assert html.count("app.showResultInfo(") == 4 * 6 * 20 and html.count("<td>seg3</td>") == 2000
+    assert "tandem seg6 figure 19</a>\n" in html and "coaxial seg1 figure 0</a> ·" in html
+    # a page taller than the screen starts at its top (Snakemake centres it in a flex box: checked in Chromium,
+    # docs/reference/report.md "Checked in a browser")
+    assert "> .grow.flex.gap-3.p-3.items-start { margin-top: auto; margin-bottom: auto; }" in html
+
+
+def test_a_report_of_design_studies_alone_does_not_point_to_a_results_summary():
+    """``snakemake --report … study_NAME`` has no results summary: its front page says where the studies are
+    instead of "Start with the results summary below"."""
+    from types import SimpleNamespace
+
+    from jinja2 import Environment
+
+    config = SimpleNamespace(config={"observer_sets": {"hemisphere": {"radius_R": 3.0}}})
+    text = Environment(trim_blocks=True, lstrip_blocks=True).from_string(
+        (REPO / "workflow/report/workflow.rst").read_text()).render(snakemake=config, categories={}, files=[])
+    assert "Start with the results summary below" not in text
+    assert 'category "Design studies", one subcategory' in text

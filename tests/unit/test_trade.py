@@ -63,3 +63,24 @@ def test_certification_and_footprint_columns_repeat_the_aircraft_values_on_every
     table = footprint_columns(certification_columns(rows, summary), areas)
     assert table["min_margin_db"].tolist() == [0.55, 0.55] and table["epnl_approach_db"].tolist() == [94.9, 94.9]
     assert table["sel_db_80db_area_km2"].tolist() == [9.1, 9.1] and table["footprint_open"].iloc[0] == "sel_db 60 dB"
+
+
+def test_trends_mark_the_designs_whose_broadband_model_differs_and_count_blades_in_whole_numbers(tmp_path):
+    """``auto`` picks BPM for the slow designs' main rotor and Pegg for the others: those rows (and the means that
+    include them) are the ones marked, a case without a switch has none; a blade count gets whole-number ticks."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from nps.plots import trade as figures
+
+    omega = np.repeat([22.4, 25.0, 28.0], 3)
+    table = pd.DataFrame({"main.omega_rad_s": omega, "main.n_blades": np.tile([3, 4, 5], 3), "aircraft": "helicopter",
+                          "segment": "seg2", "segment_name": "level", "main_broadband": np.where(omega < 23, "bpm", "pegg"),
+                          "tail_broadband": "bpm", "max_broadband_db": 80.0, "max_dba_db": 80.0 + omega})
+    switched = figures._broadband_switched(table)
+    assert switched.tolist() == (omega < 23).tolist()
+    assert not figures._broadband_switched(table.assign(main_broadband="pegg")).any()
+    assert figures._integer_valued(table["main.n_blades"]) and not figures._integer_valued(table["main.omega_rad_s"])
+    path = tmp_path / "trends.png"
+    figures.metrics_against_variables(table, ["main.omega_rad_s", "main.n_blades"], ["max_dba_db"], "t", path)
+    assert path.stat().st_size > 0

@@ -170,7 +170,8 @@ def test_bad_configuration_stops_before_any_job(tmp_path):
 
 def test_report_opens_on_the_results_summary(campaign_dir):
     """The results summary holds every aircraft × segment with the levels of the summary tables, and the report's
-    front page (the workflow description) inserts it and links the figures."""
+    front page (the workflow description) inserts it and links the figures; the build reports no docutils error and
+    the page holds no system message."""
     import json
 
     summary = pd.read_csv(campaign_dir / "results/results_summary.csv", keep_default_na=False)

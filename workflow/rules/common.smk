@@ -181,9 +181,11 @@ def metrics_signal_inputs(wildcards):
 
 
 # used by acoustics.smk and metrics.smk
-def variant_disks(wildcards):
-    """Disk-table directory of a load variant: the trimmed loads (base) or the loads with the wake's induced velocity (bvi)."""
-    return f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}/{'bvi' if wildcards.variant == 'bvi' else 'loads'}"
+def variant_disks(wildcards, variant=None):
+    """Disk-table directory of a load variant (the job's, or ``variant``): the trimmed loads (base) or the loads with
+    the wake's induced velocity (bvi)."""
+    variant = variant or wildcards.variant
+    return f"{RESULTS}/{wildcards.aircraft}/{wildcards.segment}/{'bvi' if variant == 'bvi' else 'loads'}"
 
 
 # used by figures.smk
@@ -251,6 +253,8 @@ def source_hemisphere_inputs(wildcards):
               "observers": f"{base}/observers/{source_set()}.parquet"}
     if wildcards.segment in CAMPAIGN.hsi_segments():
         inputs["hsi"] = f"{base}/hsi/{source_set()}_{variant}"
+    if metrics_reads_disks(config):  # BPM broadband (bpm, or auto), as the metrics
+        inputs["disks"] = variant_disks(wildcards, variant)
     return inputs
 
 
@@ -317,12 +321,15 @@ STUDY_CACHE = f"{RESULTS}/studies/cache"
 
 @lru_cache(maxsize=None)
 def design_study(name):
-    """The validated, expanded study (nps.app.designs.DesignStudy); a configuration error stops the run."""
+    """The validated, expanded study (nps.app.designs.DesignStudy), its size and estimated cost on stderr; a
+    configuration error (or a study estimated above its max_cost_core_h) stops the run."""
     try:
-        return load_study(STUDIES_DIR / f"{name}.yaml", root=".")
+        study = load_study(STUDIES_DIR / f"{name}.yaml", root=".")
     except ConfigError as error:
         sys.stderr.write(f"NPS study configuration error: {error}\n")
         raise SystemExit(1)
+    sys.stderr.write(f"NPS study {study.describe()}\n")
+    return study
 
 
 def study_dir(name):

@@ -175,17 +175,27 @@ def trailing_edge_thicknesses(chord_m, reynolds, alpha_deg, tripped) -> dict[str
 # --------------------------------------------------------------------------------------------
 
 
+def directivity_factors(cos_theta, sin2_phi, mach):
+    """(D̄_h, D̄_l) of eq. (B1), (B2) from cos Θ_e, sin²Φ_e and M, with 2 sin²(Θ_e/2) = 1 − cos Θ_e and
+    sin²Θ_e = (1 − cos Θ_e)(1 + cos Θ_e).
+
+    Arithmetic only, so that numpy arrays (:func:`directivity_high`, :func:`directivity_low`) and the compiled
+    rotation average of :mod:`nps.noise.broadband.rotor` (scalars) evaluate the same expressions.
+    """
+    convection = 1.0 + mach * cos_theta
+    high = (1.0 - cos_theta) * sin2_phi / (convection * (1.0 + 0.2 * mach * cos_theta) ** 2)
+    low = (1.0 - cos_theta) * (1.0 + cos_theta) * sin2_phi / convection**4
+    return high, low
+
+
 def directivity_high(theta_e_rad, phi_e_rad, mach) -> np.ndarray:
     """D̄_h, eq. (B1): 2 sin²(Θ_e/2) sin²Φ_e / ((1 + M cos Θ_e)(1 + (M − M_c) cos Θ_e)²), M_c = 0.8 M."""
-    cos_t = np.cos(theta_e_rad)
-    mach = np.asarray(mach, dtype=float)
-    return (2.0 * np.sin(0.5 * np.asarray(theta_e_rad)) ** 2 * np.sin(phi_e_rad) ** 2
-            / ((1.0 + mach * cos_t) * (1.0 + 0.2 * mach * cos_t) ** 2))
+    return directivity_factors(np.cos(theta_e_rad), np.sin(phi_e_rad) ** 2, np.asarray(mach, dtype=float))[0]
 
 
 def directivity_low(theta_e_rad, phi_e_rad, mach) -> np.ndarray:
     """D̄_l, eq. (B2): sin²Θ_e sin²Φ_e / (1 + M cos Θ_e)⁴."""
-    return np.sin(theta_e_rad) ** 2 * np.sin(phi_e_rad) ** 2 / (1.0 + np.asarray(mach) * np.cos(theta_e_rad)) ** 4
+    return directivity_factors(np.cos(theta_e_rad), np.sin(phi_e_rad) ** 2, np.asarray(mach, dtype=float))[1]
 
 
 def directivity(distance_m, theta_e_rad, phi_e_rad, mach) -> Directivity:
@@ -523,13 +533,21 @@ def tip_lift_slope_ratio(aspect_ratio: float) -> float:
 
 
 def section_msp(frequency_hz, sections: Sections, radiation: Directivity, medium: Medium) -> dict[str, np.ndarray]:
-    """Band MSP (Pa²) of the five section mechanisms (all of COMPONENTS but ``tip``), shape S + (n_f,)."""
+    """Band MSP (Pa²) of the five section mechanisms (all of COMPONENTS but ``tip``), shape S + (n_f,).
+
+    LBL-VS without any untripped section and bluntness without any h > 0 are 0 Pa² everywhere: not evaluated.
+    """
     f = np.asarray(frequency_hz, dtype=float)
     if not (np.all(np.isfinite(f)) and np.all(f > 0.0)):
         raise ValueError("frequency_hz must be finite and positive")
     out = tbl_te_msp(f, sections, radiation, medium)
-    out["lbl_vs"] = lbl_vs_msp(f, sections, radiation, medium)
-    out["bluntness"] = bluntness_msp(f, sections, radiation, medium)
+    fields = [getattr(sections, n) for n in sections.__dataclass_fields__]
+    fields += [getattr(radiation, n) for n in radiation.__dataclass_fields__]
+    shape = np.broadcast_shapes(*(np.shape(v) + (1,) for v in fields), f.shape)
+    out["lbl_vs"] = (np.zeros(shape) if np.all(sections.tripped)
+                     else lbl_vs_msp(f, sections, radiation, medium))
+    out["bluntness"] = (np.zeros(shape) if not np.any(np.asarray(sections.te_thickness_m) > 0.0)
+                        else bluntness_msp(f, sections, radiation, medium))
     return out
 
 

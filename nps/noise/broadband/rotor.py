@@ -42,7 +42,7 @@ import pandas as pd
 
 from nps.noise.broadband import bpm
 from nps.core.atmosphere import AtmosphereState
-from nps.core.jit import kernel
+from nps.core.jit import kernel, prange
 from nps.rotor.geometry import OperatingPoint, RotorGeometry
 from nps.noise.spectra import third_octave_bands
 
@@ -107,79 +107,167 @@ class SourceKinematics:
     velocity_mps: np.ndarray
 
 
-def _rotated_about_z(vectors: np.ndarray, angle: float) -> np.ndarray:
-    c, s = np.cos(angle), np.sin(angle)
-    x, y = vectors[..., 0], vectors[..., 1]
-    return np.stack([c * x - s * y, s * x + c * y, vectors[..., 2]], axis=-1)
+# eq. (B1), (B2) compiled: the one formula of nps.noise.broadband.bpm, inlined into the rotation average
+_directivity_factors = kernel(inline=True)(bpm.directivity_factors)
 
 
-def _radiation(kin: SourceKinematics, mach, observer_m: np.ndarray, observer_velocity_mps: np.ndarray,
+@kernel(parallel=True)
+def _radiation_kernel(position, span, flow, normal, velocity, mach, observers, observer_velocity, speed_of_sound,
+                      sub_cos, sub_sin, doppler, high, low, distance, doppler_factor):
+    """For every observer i (rows of ``observers``, H) and source (a, e) of the (n_az, n_src, 3) kinematics: D̄_h
+    and D̄_l averaged over the sub-azimuths (the observer turned about z_H by the angles of cosine ``sub_cos`` and
+    sine ``sub_sin``), the cell centre's distance r_e and Doppler factor D (1 without ``doppler``), written into
+    the (n_obs, n_az, n_src) outputs. With r the source→observer vector and (x_e, y_e, z_e) the ``flow``,
+    ``span`` and ``normal`` axes: cos Θ_e = r·x_e / |r| (clipped to [−1, 1]) and
+    sin²Φ_e = (r·z_e)² / ((r·z_e)² + (r·y_e)²) (0 on the x_e axis, where Φ_e = atan2(0, 0) = 0)."""
+    n_sub = sub_cos.size
+    for i in prange(observers.shape[0]):
+        ox, oy, oz = observers[i, 0], observers[i, 1], observers[i, 2]
+        turned_x, turned_y = sub_cos * ox - sub_sin * oy, sub_sin * ox + sub_cos * oy
+        sub_high, sub_low = np.empty(n_sub), np.empty(n_sub)
+        for a in range(position.shape[0]):
+            for e in range(position.shape[1]):
+                px, py, pz = position[a, e, 0], position[a, e, 1], position[a, e, 2]
+                fx, fy, fz = flow[a, e, 0], flow[a, e, 1], flow[a, e, 2]
+                sx, sy, sz = span[a, e, 0], span[a, e, 1], span[a, e, 2]
+                nx, ny, nz = normal[a, e, 0], normal[a, e, 1], normal[a, e, 2]
+                m = mach[a, e]
+                for j in range(n_sub):  # no dependence between sub-azimuths: vectorised
+                    rx, ry, rz = turned_x[j] - px, turned_y[j] - py, oz - pz
+                    n = rx * nx + ry * ny + rz * nz
+                    s = rx * sx + ry * sy + rz * sz
+                    across = n * n + s * s
+                    cos_t = min(max((rx * fx + ry * fy + rz * fz) / np.sqrt(rx * rx + ry * ry + rz * rz), -1.0), 1.0)
+                    sub_high[j], sub_low[j] = _directivity_factors(cos_t, n * n / across if across > 0.0 else 0.0, m)
+                h = 0.0
+                lo = 0.0
+                for j in range(n_sub):  # the cell means, summed in order
+                    h += sub_high[j]
+                    lo += sub_low[j]
+                rx, ry, rz = ox - px, oy - py, oz - pz
+                r = np.sqrt(rx * rx + ry * ry + rz * rz)
+                high[i, a, e], low[i, a, e], distance[i, a, e] = h / n_sub, lo / n_sub, r
+                doppler_factor[i, a, e] = 1.0
+                if doppler:  # Mach numbers of source and observer towards the observer
+                    scale = r * speed_of_sound
+                    m_src = (velocity[a, e, 0] * rx + velocity[a, e, 1] * ry + velocity[a, e, 2] * rz) / scale
+                    m_obs = (observer_velocity[0] * rx + observer_velocity[1] * ry + observer_velocity[2] * rz) / scale
+                    doppler_factor[i, a, e] = (1.0 - m_obs) / (1.0 - m_src)
+
+
+def _radiation(kin: SourceKinematics, mach, observers_m: np.ndarray, observer_velocity_mps: np.ndarray,
                speed_of_sound_mps: float, doppler: bool, cell_rad: float,
                n_sub: int) -> tuple[bpm.Directivity, np.ndarray]:
-    """Directivity (n_az, n_src) and Doppler factor D for one observer.
+    """Directivity and Doppler factor D of the (n_az, n_src) sources at observers ``observers_m`` (shape
+    (..., 3), H): arrays of shape (...) + (n_az, n_src).
 
     D̄_h and D̄_l are averaged over ``n_sub`` sub-azimuths spread evenly over the azimuth cell
     (width ``cell_rad``, the source turned about z_H): near the rotor plane D̄_h of eq. (B1) jumps
     where the chordwise axis points at the observer (Θ_e → 180°, sin²Φ_e undefined), a feature a
     few degrees wide that point samples would catch or miss at random. Distance and D are the
-    cell centre's (they vary smoothly).
+    cell centre's (they vary smoothly). Compiled (:func:`_radiation_kernel`), parallel over observers.
     """
-    high = np.zeros(np.shape(kin.position_m)[:2])
-    low = np.zeros_like(high)
-    normal = np.cross(kin.flow_unit, kin.span_unit)
-    for j in range(n_sub):
-        # turning the source by +δ about z_H is turning the observer by −δ in the source's frame
-        rvec = _rotated_about_z(observer_m, -((j + 0.5) / n_sub - 0.5) * cell_rad) - kin.position_m
-        rhat = rvec / np.linalg.norm(rvec, axis=-1, keepdims=True)
-        theta = np.arccos(np.clip(np.sum(rhat * kin.flow_unit, axis=-1), -1.0, 1.0))
-        phi = np.arctan2(np.abs(np.sum(rhat * normal, axis=-1)), np.sum(rhat * kin.span_unit, axis=-1))
-        high += bpm.directivity_high(theta, phi, mach) / n_sub
-        low += bpm.directivity_low(theta, phi, mach) / n_sub
-    rvec = observer_m[None, None, :] - kin.position_m
-    dist = np.linalg.norm(rvec, axis=-1)
+    obs = np.asarray(observers_m, dtype=float)
+    n_az, n_src = np.shape(kin.position_m)[:2]
+    shape = obs.shape[:-1] + (n_az, n_src)
+    flat = np.ascontiguousarray(obs.reshape(-1, 3))
+    # turning the source by +δ about z_H is turning the observer by −δ in the source's frame
+    turn = -((np.arange(n_sub) + 0.5) / n_sub - 0.5) * cell_rad
+    sources = [np.ascontiguousarray(v, dtype=float) for v in (
+        kin.position_m, kin.span_unit, kin.flow_unit, np.cross(kin.flow_unit, kin.span_unit), kin.velocity_mps,
+        np.broadcast_to(np.asarray(mach, dtype=float), (n_az, n_src)))]
+    high, low, dist, d = (np.empty((flat.shape[0], n_az, n_src)) for _ in range(4))
+    _radiation_kernel(*sources, flat, np.asarray(observer_velocity_mps, dtype=float), float(speed_of_sound_mps),
+                      np.cos(turn), np.sin(turn), bool(doppler), high, low, dist, d)
     if np.any(dist <= 0.0):
         raise ValueError("an observer coincides with a blade element")
-    radiation = bpm.Directivity(dist, high, low)
-    if not doppler:
-        return radiation, np.ones_like(dist)
-    rhat = rvec / dist[..., None]
-    m_src = np.sum(kin.velocity_mps * rhat, axis=-1) / speed_of_sound_mps
-    m_obs = rhat @ observer_velocity_mps / speed_of_sound_mps
-    return radiation, (1.0 - m_obs) / (1.0 - m_src)
-
-
-def _average(msp, doppler_factor, active):
-    """Reception-time average over azimuth (axis 0) of each source, weights 1/D; summed over sources."""
-    weight = 1.0 / doppler_factor
-    weight = weight / np.sum(weight, axis=0, keepdims=True)
-    return np.sum(np.where(active[..., None], msp, 0.0) * weight[..., None], axis=(0, 1))
+    return bpm.Directivity(dist.reshape(shape), high.reshape(shape), low.reshape(shape)), d.reshape(shape)
 
 
 SPECTRUM_STEP_DECADES = 1.0 / 80.0
 """Log-frequency step of the source spectra that Doppler-shifted bands are interpolated from."""
 
+OBSERVER_CHUNK = 128
+"""Observers whose geometry (n_az × n_src arrays each) is held at once."""
 
-@kernel
-def _interpolate_rows(ln_msp, x, out):
-    """out[g, a, e, q] = exp(linear interpolation of ln_msp[g, a, e, :] at fractional index x[a, e, q])."""
-    n_grid = ln_msp.shape[3]
-    for a in range(x.shape[0]):
-        for e in range(x.shape[1]):
-            for q in range(x.shape[2]):
-                k = min(max(int(np.floor(x[a, e, q])), 0), n_grid - 2)
-                w = x[a, e, q] - k
-                for g in range(ln_msp.shape[0]):
-                    lo = ln_msp[g, a, e, k]
-                    out[g, a, e, q] = np.exp(lo + w * (ln_msp[g, a, e, k + 1] - lo))
+OBSERVER_BLOCK = 16
+"""Observers that :func:`_average_kernel` sums source by source (each source's spectra read once per block)."""
 
 
-def _log_interpolate(ln_msp: np.ndarray, has_energy: np.ndarray, log_f0: float, log_query: np.ndarray) -> np.ndarray:
-    """Source spectra given as ln MSP (n_g, n_az, n_src, n_grid) on log10 f = log_f0 + k·step,
-    interpolated linearly in dB vs log f at ``log_query`` (n_az, n_src, n_q); sources without
-    energy stay at 0."""
-    out = np.empty(ln_msp.shape[:3] + log_query.shape[-1:])
-    _interpolate_rows(ln_msp, np.ascontiguousarray((log_query - log_f0) / SPECTRUM_STEP_DECADES), out)
-    return np.where(has_energy, out, 0.0)
+@kernel(parallel=True)
+def _average_kernel(spectra, energy, use_low, high, low, weight, log_shift, active, log_bands, log_f0, doppler,
+                    out):
+    """Adds to out[g, i, q] the sum over the active sources (a, e), a major, of (S_g · F) · w: the reception-time
+    average of band q of mechanism g at observer i.
+
+    ``spectra`` (n_g, n_az, n_src, n): with ``doppler`` ln MSP on the grid log10 f = log_f0 +
+    k·SPECTRUM_STEP_DECADES, S_g the exponential of its linear interpolation at log10 f = ``log_bands[q]`` −
+    ``log_shift[i, a, e]`` (log10 D); without, S_g = ``spectra[g, a, e, q]`` (the band centres). F =
+    ``low[i, a, e]`` where ``use_low[g, a, e]``, else ``high[i, a, e]`` (D̄/r_e²); w = ``weight[i, a, e]``.
+    Sources (rows) without ``energy[g, a, e]`` add nothing. Parallel over blocks of OBSERVER_BLOCK observers.
+    """
+    n_obs, n_grid, n_q = high.shape[0], spectra.shape[3], log_bands.size
+    for b in prange((n_obs + OBSERVER_BLOCK - 1) // OBSERVER_BLOCK):
+        k = np.zeros(n_q, dtype=np.int64)
+        w = np.zeros(n_q)
+        value = np.zeros(n_q)
+        for a in range(spectra.shape[1]):
+            for e in range(spectra.shape[2]):
+                if not active[a, e]:
+                    continue
+                for i in range(b * OBSERVER_BLOCK, min(n_obs, (b + 1) * OBSERVER_BLOCK)):
+                    if doppler:
+                        shift = log_shift[i, a, e]
+                        for q in range(n_q):
+                            x = ((log_bands[q] - shift) - log_f0) / SPECTRUM_STEP_DECADES
+                            k[q] = min(max(int(np.floor(x)), 0), n_grid - 2)
+                            w[q] = x - k[q]
+                    for g in range(spectra.shape[0]):
+                        if not energy[g, a, e]:
+                            continue
+                        row = spectra[g, a, e]
+                        if doppler:
+                            for q in range(n_q):
+                                lo = row[k[q]]
+                                value[q] = np.exp(lo + w[q] * (row[k[q] + 1] - lo))
+                        else:
+                            value[:] = row
+                        factor = low[i, a, e] if use_low[g, a, e] else high[i, a, e]
+                        weight_i, total = weight[i, a, e], out[g, i]
+                        for q in range(n_q):
+                            total[q] += value[q] * factor * weight_i
+
+
+def _rotation_average(msp, use_low, kin: SourceKinematics, mach, active, observers, observer_velocity_mps,
+                      band_center_hz, speed_of_sound_mps: float, doppler: bool, log_f0: float,
+                      n_sub: int) -> np.ndarray:
+    """Band MSP (Pa², (n_g, n_obs, n_band)) of one blade's sources at the observers, averaged over a revolution in
+    reception time and summed over the sources (one blade: no factor B).
+
+    ``msp`` (n_g, n_az, n_src, n): the sources' spectra at unit directivity and distance, with ``doppler`` on the
+    grid log10 f = ``log_f0`` + k·SPECTRUM_STEP_DECADES, else at the band centres; ``use_low`` (n_g, n_az, n_src):
+    where D̄_l applies instead of D̄_h; ``kin``, ``mach`` (n_az, n_src) and the radiating mask ``active`` of the
+    sources; observers (n_obs, 3) in H moving at ``observer_velocity_mps``. OBSERVER_CHUNK observers at a time:
+    :func:`_radiation`, then :func:`_average_kernel` with the weights 1/D normalised over each source's azimuths.
+    """
+    msp = np.broadcast_to(msp, np.shape(use_low) + np.shape(msp)[-1:])
+    energy = np.any(msp > 0.0, axis=-1)
+    spectra = (np.log(np.maximum(msp, 1e-300), out=np.zeros(msp.shape), where=energy[..., None]) if doppler
+               else np.ascontiguousarray(msp))
+    log_bands = np.log10(band_center_hz)
+    out = np.empty((msp.shape[0], len(observers), log_bands.size))
+    for start in range(0, len(observers), OBSERVER_CHUNK):
+        chunk = slice(start, start + OBSERVER_CHUNK)
+        radiation, d = _radiation(kin, mach, observers[chunk], observer_velocity_mps, speed_of_sound_mps, doppler,
+                                  2.0 * np.pi / msp.shape[1], n_sub)
+        r2 = radiation.distance_m**2
+        weight = 1.0 / d
+        total = np.zeros((msp.shape[0], d.shape[0], log_bands.size))
+        _average_kernel(spectra, energy, np.ascontiguousarray(use_low), radiation.high / r2, radiation.low / r2,
+                        weight / np.sum(weight, axis=1, keepdims=True), np.log10(d),
+                        np.ascontiguousarray(active, dtype=bool), log_bands, log_f0, doppler, total)
+        out[:, chunk] = total
+    return out
 
 
 def rotating_sources_msp(
@@ -213,7 +301,8 @@ def rotating_sources_msp(
     proportional to D̄/r_e²: D̄_l for stalled separation, D̄_h otherwise). Without Doppler it is
     taken at the band centres; with Doppler on a log-frequency grid of SPECTRUM_STEP_DECADES
     covering every possible f_c/D and interpolated linearly in dB (≤ 0.02 dB from direct
-    evaluation, tests/unit/test_bpm.py).
+    evaluation, tests/unit/test_bpm.py). Geometry and the weighted sum over azimuths and sources are
+    compiled kernels, parallel over observers (:func:`_rotation_average`).
     """
     obs = np.atleast_2d(np.asarray(observers_m, dtype=float))
     if obs.ndim != 2 or obs.shape[1] != 3 or not np.all(np.isfinite(obs)):
@@ -222,7 +311,6 @@ def rotating_sources_msp(
     v_obs = np.asarray(observer_velocity_mps, dtype=float)
     active = np.ones(np.shape(kinematics.position_m)[:2], dtype=bool) if active is None else np.asarray(active)
     c0 = medium.speed_of_sound_mps
-    cell = 2.0 * np.pi / np.shape(kinematics.position_m)[0]
     mach = np.asarray(sections.speed_mps, dtype=float) / c0
     tip_mach = np.asarray(tip_speed_mps, dtype=float) / c0
     unit = bpm.Directivity(1.0, 1.0, 1.0)
@@ -236,27 +324,22 @@ def rotating_sources_msp(
         n_grid = int(np.ceil((log_f1 - log_f0) / SPECTRUM_STEP_DECADES)) + 1
         f_source = 10.0 ** (log_f0 + SPECTRUM_STEP_DECADES * np.arange(n_grid))
     else:
-        f_source = f_c
+        f_source, log_f0 = f_c, 0.0
     section = bpm.section_msp(f_source, sections, unit, medium)
-    groups = (  # (mechanisms, their source spectra stacked on axis 0, kinematics, Mach, radiating mask)
-        (bpm.COMPONENTS[:-1], np.stack([section[name] for name in bpm.COMPONENTS[:-1]]), kinematics, mach, active),
+    stalled = bpm.is_stalled(sections, medium)
+    use_low = np.zeros((len(bpm.COMPONENTS) - 1,) + np.shape(kinematics.position_m)[:2], dtype=bool)
+    use_low[bpm.COMPONENTS.index("separation")] = stalled  # stalled separation radiates with D̄_l (eq. 28)
+    groups = (  # (mechanisms, their source spectra stacked on axis 0, D̄_l rows, kinematics, Mach, radiating mask)
+        (bpm.COMPONENTS[:-1], np.stack([section[name] for name in bpm.COMPONENTS[:-1]]), use_low, kinematics, mach,
+         active),
         (bpm.COMPONENTS[-1:],
          bpm.tip_vortex_msp(f_source, tip_chord_m, tip_speed_mps, tip_alpha_rad, unit, medium, tip_shape)[None],
-         tip_kinematics, tip_mach, np.ones(tip_mach.shape, dtype=bool)),
+         np.zeros((1,) + tip_mach.shape, dtype=bool), tip_kinematics, tip_mach, np.ones(tip_mach.shape, dtype=bool)),
     )
-    stalled = bpm.is_stalled(sections, medium)
-    out = {name: np.zeros((obs.shape[0], f_c.size)) for name in bpm.COMPONENTS}
-    for names, msp, kin, m, on in groups:
-        ln_msp = np.log(np.maximum(msp, 1e-300)) if doppler else None
-        has_energy = np.any(msp > 0.0, axis=-1, keepdims=True)
-        for i, x_obs in enumerate(obs):
-            radiation, d = _radiation(kin, m, x_obs, v_obs, c0, doppler, cell, n_sub)
-            source = (_log_interpolate(ln_msp, has_energy, log_f0, np.log10(f_c) - np.log10(d)[..., None])
-                      if doppler else msp)
-            high, low = radiation.high / radiation.distance_m**2, radiation.low / radiation.distance_m**2
-            for j, name in enumerate(names):
-                factor = np.where(stalled, low, high) if name == "separation" else high
-                out[name][i] = n_blades * _average(source[j] * factor[..., None], d, on)
+    out = {}
+    for names, msp, low_rows, kin, m, on in groups:
+        total = _rotation_average(msp, low_rows, kin, m, on, obs, v_obs, f_c, c0, doppler, log_f0, n_sub)
+        out.update((name, n_blades * total[j]) for j, name in enumerate(names))
     return out
 
 
