@@ -30,12 +30,18 @@ with 4-point (cubic) Lagrange interpolation on the non-uniform nodes, then summe
 Observer motion enters only through the reception point x(t_j): F1A gives p(x, t) at any fixed
 point, and the receiver is at x(t_j) when it hears τ_j.
 
-Implementation (numba, float64, no fastmath): sources are packed into one contiguous row per
-(node, source step) with the source-only quantities (M², f·M) precomputed; observers are
-processed in blocks of ``OBSERVER_BLOCK`` (parallel over blocks), so each source row is read once
-per block and the F1A and divided-difference loops run over the block's observers as
-vectorisable 1-D loops; the cubic is evaluated in Newton form. Same results as the per-observer
-formulation to rounding (≈1e-14 of the peak, checked when the kernel was restructured).
+Implementation (numba, float64, no fastmath, no reassociation: every value is the same IEEE operation
+sequence as the per-observer formulation, bit for bit): sources are stored as one contiguous row of
+source steps per (node, quantity), with the source-only quantities (M², f·M) precomputed. Observers
+are processed in blocks of ``OBSERVER_BLOCK`` (parallel over blocks); within a block, node after node
+and observer after observer, every loop runs over source steps or targets with unit stride, which LLVM
+vectorises: the reception times, the F1A integrand, the Newton divided differences, each interval's
+first target (an estimate checked against the targets' own rounded times), the cubic at up to n targets
+per interval (one loop over intervals per slot) and the scatter of those values into target order,
+added to the observer's buffer. A signal whose interval holds more than ``MAX_SLOTS`` targets, or whose
+reception times do not check, takes the scalar walk over targets (:func:`_interpolate_walk`), the
+reference of the vectorised path. Sums run in the same order whatever the block
+(tests/unit/test_acoustics_reference.py pins the output to a scalar reference, ``np.array_equal``).
 
 Two drivers share the kernel:
 
@@ -165,13 +171,17 @@ class TimeGrid:
 # ----------------------------------------------------------------------------------------------
 # numba kernel
 # ----------------------------------------------------------------------------------------------
-# Packed source layout: one contiguous row of N_Q float64 per (node, source step), read once per
-# block of observers (see :func:`_pack_sources`).
-Q_POS, Q_VEL, Q_ACC, Q_FRC, Q_FRD, Q_JERK, Q_M2, Q_FM, Q_TAU, Q_FLUX, Q_FLUXD = 0, 3, 6, 9, 12, 15, 18, 19, 20, 21, 22
-N_Q = 23
-# Observers per block: every source row is loaded once per block and the per-observer inner loops
-# run over the block (contiguous, vectorisable); 16 was fastest on the benchmark (8: -10 %, 32: -20 %).
+# Source layout: one contiguous row of n_tau float64 per (node, quantity) (see :func:`_pack_sources`), so that
+# every per-observer loop runs over the source steps with unit stride and LLVM vectorises it.
+S_POS, S_VEL, S_ACC, S_FRC, S_FRD, S_JERK, S_M2, S_FM, S_FLUX, S_FLUXD = 0, 3, 6, 9, 12, 15, 18, 19, 20, 21
+N_S = 22
+# Observers per parallel block: a node's source rows are read from cache by the block's observers, one after
+# the other, and the block is the unit of the parallel partition (nps.app.resources sizes a job's threads by it).
 OBSERVER_BLOCK = 16
+# Most targets a source interval may hold on the vectorised interpolation path (:func:`_interpolate_signal`);
+# a signal with more (a very fine target grid) takes the scalar walk of :func:`_interpolate_walk`.
+MAX_SLOTS = 16
+PAD = 2  # periodic mode: samples copied before (PAD) and after (PAD + 1) one period
 
 
 @kernel(inline=True)
@@ -226,108 +236,249 @@ def _monopole(s, r0, r1, r2, v0, v1, v2, a0, a1, a2, j0, j1, j2, m2, c0):
 
 
 @kernel
-def _emit(row, col, obs, n_b, tb, pa, pb, monopole, surface, c0, rho0_vol):
-    """Reception time and 4π × pressure of one source row at the n_b observers of a block.
+def _receive(node, xp, ov, inv_a, tau, lo, hi, shift, rs, tb):
+    """Reception of the source steps lo…hi−1 of one node (rows (N_S, n_tau)) at one observer, position xp (3,) (m) at
+    t = 0, velocity ov (3,) (m/s), inv_a = 1/(c0² − v_o²): rs[j] = s = t − τ_j (s), tb[shift + j] = t (s). The
+    arithmetic of :func:`_reception`, in a loop over source steps of its own (vectorised; the loops of the F1A
+    terms recompute r = x(t) − y, :func:`_radiation_vector`: two short dependency chains, each writing one or two
+    arrays, run faster than one long loop)."""
+    ox, oy, oz = ov[0], ov[1], ov[2]
+    x0, x1, x2 = xp[0], xp[1], xp[2]
+    for j in range(lo, hi):
+        d0 = x0 + ox * tau[j] - node[S_POS, j]
+        d1 = x1 + oy * tau[j] - node[S_POS + 1, j]
+        d2 = x2 + oz * tau[j] - node[S_POS + 2, j]
+        dv = d0 * ox + d1 * oy + d2 * oz
+        dd = d0 * d0 + d1 * d1 + d2 * d2
+        s = (dv + np.sqrt(dv * dv + dd / inv_a)) * inv_a
+        rs[j] = s
+        tb[shift + j] = tau[j] + s
 
-    ``row``: packed source row (N_Q,); ``obs`` (7, block): the block's observers, rows x, y, z,
-    vx, vy, vz (G) and 1/(c0² − v_o²). Compact F1A dipole (module docstring), written as
-    W²/r · [ḟ_r/c0 + (f_r − f_M)/r + f_r W (Ṁ_r/c0 + (M_r − M²)/r)], W = 1/(1 − M_r);
-    with ``monopole`` also ρ0V × :func:`_monopole` into pb; with ``surface`` the panel thickness term
-    W²/r · [Q̇ + Q W (Ṁ_r + c0 (M_r − M²)/r)] into pb. Results go to row ``col`` of tb, pa, pb
-    (shape (n_ext, block)). Loops over observers on 1-D rows so that they vectorise.
-    """
-    y0, y1, y2 = row[Q_POS], row[Q_POS + 1], row[Q_POS + 2]
-    v0, v1, v2 = row[Q_VEL], row[Q_VEL + 1], row[Q_VEL + 2]
-    a0, a1, a2 = row[Q_ACC], row[Q_ACC + 1], row[Q_ACC + 2]
-    f0, f1, f2 = row[Q_FRC], row[Q_FRC + 1], row[Q_FRC + 2]
-    e0, e1, e2 = row[Q_FRD], row[Q_FRD + 1], row[Q_FRD + 2]
-    m2, fm, tau = row[Q_M2], row[Q_FM], row[Q_TAU]
+
+@kernel(inline=True)
+def _radiation_vector(node, xp, ov, tau, s, j):
+    """r = x(t) − y (m) of source step j received after s (:func:`_receive`), as :func:`_reception` computes it."""
+    return (xp[0] + ov[0] * tau[j] - node[S_POS, j] + ov[0] * s,
+            xp[1] + ov[1] * tau[j] - node[S_POS + 1, j] + ov[1] * s,
+            xp[2] + ov[2] * tau[j] - node[S_POS + 2, j] + ov[2] * s)
+
+
+@kernel
+def _dipole(node, xp, ov, tau, rs, lo, hi, shift, c0, p):
+    """Compact F1A dipole (4π p) of source steps lo…hi−1 into p[shift + j]: with W = 1/(1 − M_r),
+    W²/r · [ḟ_r/c0 + (f_r − f_M)/r + f_r W (Ṁ_r/c0 + (M_r − M²)/r)] (module docstring)."""
     inv_c = 1.0 / c0
-    ox, oy, oz, ovx, ovy, ovz, inv_a = obs[0], obs[1], obs[2], obs[3], obs[4], obs[5], obs[6]
-    tb_row = tb[col]
-    pa_row = pa[col]
-    for b in range(n_b):
-        t, s, r0, r1, r2 = _reception(y0, y1, y2, ox[b], oy[b], oz[b], ovx[b], ovy[b], ovz[b], tau, c0, inv_a[b])
+    for j in range(lo, hi):
+        s = rs[j]
+        r0, r1, r2 = _radiation_vector(node, xp, ov, tau, s, j)
         inv_r = 1.0 / (c0 * s)
         n0 = r0 * inv_r
         n1 = r1 * inv_r
         n2 = r2 * inv_r
-        mr = (v0 * n0 + v1 * n1 + v2 * n2) * inv_c
-        mdot_r = (a0 * n0 + a1 * n1 + a2 * n2) * inv_c
+        mr = (node[S_VEL, j] * n0 + node[S_VEL + 1, j] * n1 + node[S_VEL + 2, j] * n2) * inv_c
+        mdot_r = (node[S_ACC, j] * n0 + node[S_ACC + 1, j] * n1 + node[S_ACC + 2, j] * n2) * inv_c
         w = 1.0 / (1.0 - mr)
-        fr = f0 * n0 + f1 * n1 + f2 * n2
-        fdr = e0 * n0 + e1 * n1 + e2 * n2
-        tb_row[b] = t
-        pa_row[b] = w * w * inv_r * (fdr * inv_c + (fr - fm) * inv_r + fr * w * (mdot_r * inv_c + (mr - m2) * inv_r))
-    if monopole:
-        j0, j1, j2 = row[Q_JERK], row[Q_JERK + 1], row[Q_JERK + 2]
-        pb_row = pb[col]
-        for b in range(n_b):
-            t, s, r0, r1, r2 = _reception(y0, y1, y2, ox[b], oy[b], oz[b], ovx[b], ovy[b], ovz[b], tau, c0, inv_a[b])
-            pb_row[b] = rho0_vol * _monopole(s, r0, r1, r2, v0, v1, v2, a0, a1, a2, j0, j1, j2, m2, c0)
-    if surface:
-        q, qd = row[Q_FLUX], row[Q_FLUXD]
-        pb_row = pb[col]
-        for b in range(n_b):
-            t, s, r0, r1, r2 = _reception(y0, y1, y2, ox[b], oy[b], oz[b], ovx[b], ovy[b], ovz[b], tau, c0, inv_a[b])
-            inv_r = 1.0 / (c0 * s)
-            mr = (v0 * r0 + v1 * r1 + v2 * r2) * inv_r * inv_c
-            mdot_r = (a0 * r0 + a1 * r1 + a2 * r2) * inv_r * inv_c
-            w = 1.0 / (1.0 - mr)
-            pb_row[b] = w * w * inv_r * (qd + q * w * (mdot_r + c0 * (mr - m2) * inv_r))
+        fr = node[S_FRC, j] * n0 + node[S_FRC + 1, j] * n1 + node[S_FRC + 2, j] * n2
+        fdr = node[S_FRD, j] * n0 + node[S_FRD + 1, j] * n1 + node[S_FRD + 2, j] * n2
+        p[shift + j] = w * w * inv_r * (fdr * inv_c + (fr - node[S_FM, j]) * inv_r
+                                        + fr * w * (mdot_r * inv_c + (mr - node[S_M2, j]) * inv_r))
 
 
 @kernel
-def _divided_differences(tb, p, lo, hi, n_b, d1, d2, d3):
-    """Newton divided differences of the samples (tb[j], p[j]), j = lo…hi−1, for n_b observers.
+def _monopole_signal(node, xp, ov, tau, rs, lo, hi, shift, c0, rho0_vol, p):
+    """Compact thickness monopole, ρ0V × :func:`_monopole`, of source steps lo…hi−1 into p[shift + j]."""
+    for j in range(lo, hi):
+        r0, r1, r2 = _radiation_vector(node, xp, ov, tau, rs[j], j)
+        p[shift + j] = rho0_vol * _monopole(rs[j], r0, r1, r2, node[S_VEL, j], node[S_VEL + 1, j],
+                                            node[S_VEL + 2, j], node[S_ACC, j], node[S_ACC + 1, j], node[S_ACC + 2, j],
+                                            node[S_JERK, j], node[S_JERK + 1, j], node[S_JERK + 2, j], node[S_M2, j], c0)
 
-    d1[j] = p[t_j, t_j+1], d2[j] = p[t_j, t_j+1, t_j+2], d3[j] = p[t_j … t_j+3] (arrays (n_ext, block),
-    computed where defined); the loops run over observers on 1-D rows so that they vectorise.
-    """
+
+@kernel
+def _surface_signal(node, xp, ov, tau, rs, lo, hi, shift, c0, p):
+    """Surface-panel thickness term W²/r · [Q̇ + Q W (Ṁ_r + c0 (M_r − M²)/r)] of source steps lo…hi−1 into
+    p[shift + j]."""
+    inv_c = 1.0 / c0
+    for j in range(lo, hi):
+        s = rs[j]
+        r0, r1, r2 = _radiation_vector(node, xp, ov, tau, s, j)
+        inv_r = 1.0 / (c0 * s)
+        mr = (node[S_VEL, j] * r0 + node[S_VEL + 1, j] * r1 + node[S_VEL + 2, j] * r2) * inv_r * inv_c
+        mdot_r = (node[S_ACC, j] * r0 + node[S_ACC + 1, j] * r1 + node[S_ACC + 2, j] * r2) * inv_r * inv_c
+        w = 1.0 / (1.0 - mr)
+        p[shift + j] = w * w * inv_r * (node[S_FLUXD, j]
+                                        + node[S_FLUX, j] * w * (mdot_r + c0 * (mr - node[S_M2, j]) * inv_r))
+
+
+@kernel
+def _divided_differences(tb, p, lo, hi, d1, d2, d3):
+    """Newton divided differences of the samples (tb[j], p[j]), j = lo…hi−1: d1[j] = p[t_j, t_j+1],
+    d2[j] = p[t_j, t_j+1, t_j+2], d3[j] = p[t_j … t_j+3] (where defined)."""
     for j in range(lo, hi - 1):
-        t0, t1, p0, p1, out = tb[j], tb[j + 1], p[j], p[j + 1], d1[j]
-        for b in range(n_b):
-            out[b] = (p1[b] - p0[b]) / (t1[b] - t0[b])
+        d1[j] = (p[j + 1] - p[j]) / (tb[j + 1] - tb[j])
     for j in range(lo, hi - 2):
-        t0, t2, e0, e1, out = tb[j], tb[j + 2], d1[j], d1[j + 1], d2[j]
-        for b in range(n_b):
-            out[b] = (e1[b] - e0[b]) / (t2[b] - t0[b])
+        d2[j] = (d1[j + 1] - d1[j]) / (tb[j + 2] - tb[j])
     for j in range(lo, hi - 3):
-        t0, t3, e0, e1, out = tb[j], tb[j + 3], d2[j], d2[j + 1], d3[j]
-        for b in range(n_b):
-            out[b] = (e1[b] - e0[b]) / (t3[b] - t0[b])
+        d3[j] = (d2[j + 1] - d2[j]) / (tb[j + 3] - tb[j])
 
 
 @kernel
-def _interpolate_add(tb, p, d1, d2, d3, b, lo, hi, base, dt, count, row, off):
-    """Add the cubic interpolant of (tb[:, b], p[:, b]), samples lo…hi−1, to ``row``.
+def _target_bounds(tb, base, dt, count, lo, hi, qs):
+    """First target of every source interval: targets t_q = base + q·dt, q < count, go to the first interval
+    j ≥ lo with t_q < tb[j+1], the last interval (hi − 2) taking the rest (the rule of :func:`_interpolate_walk`).
+    qs[j] (float, an integer) is the first target of interval j, qs[hi − 1] = count. Returns the most targets of
+    an interval, or −1 (the caller walks instead) unless every boundary checks exactly and they do not decrease.
 
-    Targets t_q = base + q·dt, q < count, inside [tb[lo], tb[hi−1]], added at row[off + q].
-    A target between tb[j] and tb[j+1] uses the cubic through the four nodes j−1…j+2 (shifted
-    inward at the ends; the last interval also takes targets past its end), evaluated in Newton
-    form from the divided differences of :func:`_divided_differences`.
-    """
+    The first target at or after tb[j] is estimated as ⌈(tb[j] − base)/dt⌉ (clipped to 0…count) and checked
+    against the targets' own rounded times, t_{q−1} < tb[j] ≤ t_q: the estimate is off only when tb[j] lies within a
+    few ulps of a target time (or is not finite), and then the check fails."""
+    inv_dt = 1.0 / dt
+    fcount = float(count)
+    bad = 0
+    for j in range(lo + 1, hi - 1):
+        tn = tb[j]
+        e = min(max(np.ceil((tn - base) * inv_dt), 0.0), fcount)
+        bad += not (((e == 0.0) | (base + (e - 1.0) * dt < tn)) & ((e == fcount) | (base + e * dt >= tn)))
+        qs[j] = e
+    qs[lo] = 0.0
+    qs[hi - 1] = fcount
+    most = np.int32(0)
+    for j in range(lo, hi - 1):
+        n = np.int32(qs[j + 1] - qs[j])
+        bad += n < 0
+        most = max(most, n)
+    return -1 if bad else int(most)
+
+
+@kernel
+def _cubic_slots(tb, p, d1, d2, d3, qs, base, dt, lo, hi, n_slots, v):
+    """v[r, j]: the cubic of interval j (Newton form, nodes j−1…j+2 shifted inward at the ends, as
+    :func:`_interpolate_walk`) at target qs[j] + r, r < n_slots, for every interval (one vectorised loop per r)."""
+    for r in range(n_slots):
+        fr = float(r)
+        row = v[r]
+        for j in range(lo + 1, hi - 2):
+            t = base + (qs[j] + fr) * dt
+            row[j] = p[j - 1] + (t - tb[j - 1]) * (d1[j - 1] + (t - tb[j]) * (d2[j - 1] + (t - tb[j + 1]) * d3[j - 1]))
+        for j in (lo, hi - 2):
+            k = min(max(j - 1, lo), hi - 4)
+            t = base + (qs[j] + fr) * dt
+            row[j] = p[k] + (t - tb[k]) * (d1[k] + (t - tb[k + 1]) * (d2[k] + (t - tb[k + 2]) * d3[k]))
+
+
+@kernel
+def _scatter_slots(v, qs, lo, hi, n_slots, vals):
+    """vals[q] = the value of target q: slot r of interval j is written to vals[qs[j] + r], intervals in increasing
+    order, so the last write of a target is that of its own interval (the slots past an interval's targets belong
+    to later intervals, which overwrite them, or lie past the last target). Unsigned indices: no wrap-around test."""
+    if n_slots <= 4:
+        v0, v1, v2, v3 = v[0], v[1], v[2], v[3]
+        for j in range(lo, hi - 1):
+            q = np.uint64(qs[j])
+            vals[q] = v0[j]
+            vals[q + np.uint64(1)] = v1[j]
+            vals[q + np.uint64(2)] = v2[j]
+            vals[q + np.uint64(3)] = v3[j]
+    elif n_slots <= 6:
+        v0, v1, v2, v3, v4, v5 = v[0], v[1], v[2], v[3], v[4], v[5]
+        for j in range(lo, hi - 1):
+            q = np.uint64(qs[j])
+            vals[q] = v0[j]
+            vals[q + np.uint64(1)] = v1[j]
+            vals[q + np.uint64(2)] = v2[j]
+            vals[q + np.uint64(3)] = v3[j]
+            vals[q + np.uint64(4)] = v4[j]
+            vals[q + np.uint64(5)] = v5[j]
+    else:
+        for j in range(lo, hi - 1):
+            q = int(qs[j])
+            for r in range(n_slots):
+                vals[q + r] = v[r, j]
+
+
+@kernel
+def _accumulate(vals, row, count):
+    """row[q] += vals[q], q < count."""
+    for q in range(count):
+        row[q] += vals[q]
+
+
+@kernel
+def _interpolate_walk(tb, p, d1, d2, d3, lo, hi, base, dt, count, row):
+    """Add the cubic interpolant of (tb, p), samples lo…hi−1, at targets t_q = base + q·dt, q < count, to row[q].
+
+    A target between tb[j] and tb[j+1] uses the cubic through the four nodes j−1…j+2 (shifted inward at the ends;
+    the last interval also takes targets past its end), in Newton form from the divided differences. The scalar
+    reference of the vectorised path (:func:`_target_bounds`, :func:`_cubic_slots`, :func:`_scatter_slots`)."""
     q = 0
     t = base
     for j in range(lo, hi - 1):
         if q >= count:
             break
-        t_next = tb[j + 1, b]
+        t_next = tb[j + 1]
         last = j == hi - 2
         if t >= t_next and not last:
             continue
         k = min(max(j - 1, lo), hi - 4)
-        x0 = tb[k, b]
-        x1 = tb[k + 1, b]
-        x2 = tb[k + 2, b]
-        c0 = p[k, b]
-        c1 = d1[k, b]
-        c2 = d2[k, b]
-        c3 = d3[k, b]
+        x0 = tb[k]
+        x1 = tb[k + 1]
+        x2 = tb[k + 2]
+        c0 = p[k]
+        c1 = d1[k]
+        c2 = d2[k]
+        c3 = d3[k]
         while q < count and (t < t_next or last):
-            row[off + q] += c0 + (t - x0) * (c1 + (t - x1) * (c2 + (t - x2) * c3))
+            row[q] += c0 + (t - x0) * (c1 + (t - x1) * (c2 + (t - x2) * c3))
             q += 1
             t = base + q * dt
+
+
+@kernel
+def _interpolate_signal(tb, p, lo, hi, base, dt, count, row, d1, d2, d3, qs, v, vals):
+    """Add the cubic interpolant of the samples (tb[j], p[j]), j = lo…hi−1, at t_q = base + q·dt, q < count, to
+    row[q]: divided differences, every target's interval (:func:`_target_bounds`), the cubic at up to n targets per
+    interval (vectorised over intervals), the values in target order, added to row. Same arithmetic as the walk
+    of :func:`_interpolate_walk`, which takes over when an interval holds more than MAX_SLOTS targets."""
+    _divided_differences(tb, p, lo, hi, d1, d2, d3)
+    n = _target_bounds(tb, base, dt, count, lo, hi, qs)
+    if n < 0 or n > MAX_SLOTS:
+        _interpolate_walk(tb, p, d1, d2, d3, lo, hi, base, dt, count, row)
+        return
+    _cubic_slots(tb, p, d1, d2, d3, qs, base, dt, lo, hi, n, v)
+    _scatter_slots(v, qs, lo, hi, n, vals)
+    _accumulate(vals, row, count)
+
+
+@kernel
+def _direct_window(tb, n_tau, t_first, t_end):
+    """Direct mode: the source steps [lo, hi) whose cubic stencils cover the window [t_first, t_end] at one
+    observer, reception times tb (at least 4 steps, PAD extra on each side)."""
+    first = 0
+    while first < n_tau - 1 and tb[first + 1] <= t_first:
+        first += 1
+    stop = n_tau
+    while stop > first + 1 and tb[stop - 2] >= t_end:
+        stop -= 1
+    first = max(first - PAD, 0)
+    stop = min(stop + PAD, n_tau)
+    if stop - first < 4:
+        first = max(0, min(first, n_tau - 4))
+        stop = first + 4
+    return first, stop
+
+
+@kernel
+def _periodic_extension(tb, pa, pb, n_tau, period):
+    """Periodic mode: samples PAD … PAD+n_tau−1 are one period (s); copy them PAD steps before and PAD + 1 after,
+    shifted by ∓period in time."""
+    for q in range(PAD):
+        tb[q] = tb[n_tau + q] - period
+        pa[q] = pa[n_tau + q]
+        pb[q] = pb[n_tau + q]
+    for q in range(PAD + 1):
+        tb[n_tau + PAD + q] = tb[PAD + q] + period
+        pa[n_tau + PAD + q] = pa[PAD + q]
+        pb[n_tau + PAD + q] = pb[PAD + q]
 
 
 @kernel(parallel=True)
@@ -352,63 +503,66 @@ def _coverage(pos, tau, xo, vo, c0):
 
 
 @kernel
-def _observer_block(xo, vo, o_first, n_b, c0):
-    """The block's observers as rows (7, OBSERVER_BLOCK): x, y, z, vx, vy, vz (G, m and m/s) and
-    1/(c0² − v_o²) (s²/m²), for the n_b observers from index ``o_first`` of xo, vo (n_obs, 3)."""
-    obs = np.zeros((7, OBSERVER_BLOCK))
+def _observer_block(xo, vo, o_first, n_b, c0, xp, ov, inv_a):
+    """The block's observers: position at t = 0 into xp (n_b, 3) (m, G), velocity into ov (n_b, 3) (m/s) and
+    1/(c0² − v_o²) into inv_a (s²/m²), for the n_b observers from index ``o_first`` of xo, vo (n_obs, 3). Block-local
+    copies: views of them made in the node loop touch no reference count shared with the other threads."""
     for b in range(n_b):
+        o = o_first + b
+        inv_a[b] = 1.0 / (c0 * c0 - (vo[o, 0] ** 2 + vo[o, 1] ** 2 + vo[o, 2] ** 2))
         for c in range(3):
-            obs[c, b] = xo[o_first + b, c]
-            obs[3 + c, b] = vo[o_first + b, c]
-        obs[6, b] = 1.0 / (c0 * c0 - (obs[3, b] ** 2 + obs[4, b] ** 2 + obs[5, b] ** 2))
-    return obs
+            ov[b, c] = vo[o, c]
+            xp[b, c] = xo[o, c]
 
 
 @kernel
-def _direct_window(node, obs, n_b, c0, t_first, t_end, pad, tb, lo, hi):
-    """Direct mode: reception times tb[j, b] (s) of every source step j of one node (packed rows (n_tau, N_Q))
-    at the block's observers, and per observer the steps [lo[b], hi[b]) whose cubic stencils cover the
-    window [t_first, t_end] (at least 4, ``pad`` extra on each side). Returns the union (j_lo, j_hi)."""
-    n_tau = node.shape[0]
-    for j in range(n_tau):
-        for b in range(n_b):
-            tb[j, b] = _reception(node[j, Q_POS], node[j, Q_POS + 1], node[j, Q_POS + 2], obs[0, b], obs[1, b],
-                                  obs[2, b], obs[3, b], obs[4, b], obs[5, b], node[j, Q_TAU], c0, obs[6, b])[0]
-    j_lo = n_tau
-    j_hi = 0
-    for b in range(n_b):
-        first = 0
-        while first < n_tau - 1 and tb[first + 1, b] <= t_first:
-            first += 1
-        stop = n_tau
-        while stop > first + 1 and tb[stop - 2, b] >= t_end:
-            stop -= 1
-        first = max(first - pad, 0)
-        stop = min(stop + pad, n_tau)
-        if stop - first < 4:
-            first = max(0, min(first, n_tau - 4))
-            stop = first + 4
-        lo[b] = first
-        hi[b] = stop
-        j_lo = min(j_lo, first)
-        j_hi = max(j_hi, stop)
-    return j_lo, j_hi
+def _node_signals(node, kind, rho0_vol, xp, ov, tau, rs, lo, hi, shift, c0, pa, pb):
+    """4π p of source steps lo…hi−1 of one node at one observer (position xp at t = 0, velocity ov, s = t − τ_j in
+    rs) into pa[shift + j] (dipole) and pb[shift + j] (compact monopole or surface panel), as ``kind`` = (dipole,
+    monopole, panel) says."""
+    has_a, mono, panel = kind
+    if has_a:
+        _dipole(node, xp, ov, tau, rs, lo, hi, shift, c0, pa)
+    if mono:
+        _monopole_signal(node, xp, ov, tau, rs, lo, hi, shift, c0, rho0_vol, pb)
+    if panel:
+        _surface_signal(node, xp, ov, tau, rs, lo, hi, shift, c0, pb)
 
 
 @kernel
-def _periodic_extension(tb, pa, pb, n_tau, pad, n_b, period):
-    """Periodic mode: samples j = pad … pad+n_tau−1 of (tb, pa, pb) (n_ext, block) are one period (s);
-    copy them ``pad`` steps before and ``pad + 1`` after, shifted by ∓period in time."""
-    for q in range(pad):
-        for b in range(n_b):
-            tb[q, b] = tb[n_tau + q, b] - period
-            pa[q, b] = pa[n_tau + q, b]
-            pb[q, b] = pb[n_tau + q, b]
-    for q in range(pad + 1):
-        for b in range(n_b):
-            tb[n_tau + pad + q, b] = tb[pad + q, b] + period
-            pa[n_tau + pad + q, b] = pa[pad + q, b]
-            pb[n_tau + pad + q, b] = pb[pad + q, b]
+def _radiate_periodic(node, kind, rho0_vol, xp, ov, inv_a, tau, c0, t_first, dt, n_out, period, out_a, out_b, work):
+    """Periodic mode: 4π p of one node at one observer over one period, added to its output rows out_a (dipole)
+    and out_b (monopole or panel) of 2·n_out unwrapped samples from the first target after the node's first
+    reception. ``kind``: (dipole, compact monopole, surface panel) flags; ``ov``: observer velocity (3,);
+    ``work``: scratch (rs, tb, pa, pb, d1, d2, d3, qs, slots, vals)."""
+    rs, tb, pa, pb, d1, d2, d3, qs, v, vals = work
+    n_tau = tau.size
+    _receive(node, xp, ov, inv_a, tau, 0, n_tau, PAD, rs, tb)
+    _node_signals(node, kind, rho0_vol, xp, ov, tau, rs, 0, n_tau, PAD, c0, pa, pb)
+    _periodic_extension(tb, pa, pb, n_tau, period)
+    n_ext = n_tau + 2 * PAD + 1
+    m0 = int(np.ceil((tb[PAD] - t_first) / dt))
+    base = t_first + m0 * dt
+    off = m0 % n_out
+    if kind[0]:
+        _interpolate_signal(tb, pa, 0, n_ext, base, dt, n_out, out_a[off:off + n_out], d1, d2, d3, qs, v, vals)
+    if kind[1] or kind[2]:
+        _interpolate_signal(tb, pb, 0, n_ext, base, dt, n_out, out_b[off:off + n_out], d1, d2, d3, qs, v, vals)
+
+
+@kernel
+def _radiate_direct(node, kind, rho0_vol, xp, ov, inv_a, tau, c0, t_first, dt, n_out, out_a, out_b, work):
+    """Direct mode: 4π p of one node at one observer at the targets t_first + k·dt, k < n_out, added to out_a
+    (dipole) and out_b (monopole or panel), from the source steps the window needs (:func:`_direct_window`)."""
+    rs, tb, pa, pb, d1, d2, d3, qs, v, vals = work
+    n_tau = tau.size
+    _receive(node, xp, ov, inv_a, tau, 0, n_tau, 0, rs, tb)
+    lo, hi = _direct_window(tb, n_tau, t_first, t_first + (n_out - 1) * dt)
+    _node_signals(node, kind, rho0_vol, xp, ov, tau, rs, lo, hi, 0, c0, pa, pb)
+    if kind[0]:
+        _interpolate_signal(tb, pa, lo, hi, t_first, dt, n_out, out_a, d1, d2, d3, qs, v, vals)
+    if kind[1] or kind[2]:
+        _interpolate_signal(tb, pb, lo, hi, t_first, dt, n_out, out_b, d1, d2, d3, qs, v, vals)
 
 
 @kernel
@@ -423,11 +577,11 @@ def _fold_block(buf, out, o_first, n_b):
 
 
 @kernel(parallel=True)
-def _radiate_kernel(src, vol, surf, gdip, gmono, n_groups, xo, vo, c0, rho0, t_first, dt, n_out, period):
+def _radiate_kernel(src, tau, vol, surf, gdip, gmono, n_groups, xo, vo, c0, rho0, t_first, dt, n_out, period):
     """Pressure (Pa, shape (n_obs, n_groups, n_out)) of all nodes at every observer.
 
-    ``src``: packed sources (n_node, n_tau, N_Q), see :func:`_pack_sources`; ``vol`` (n_node,) m³;
-    ``surf`` (n_node,) bool: the node carries a surface-panel mass flux;
+    ``src``: sources (n_node, N_S, n_tau), see :func:`_pack_sources`; ``tau`` (n_tau,) source times (s);
+    ``vol`` (n_node,) m³; ``surf`` (n_node,) bool: the node carries a surface-panel mass flux;
     ``gdip``, ``gmono`` (n_node,) output group of each node's dipole / monopole part (−1: none);
     ``xo``, ``vo`` (n_obs, 3) observer position at t = 0 (m) and velocity (m/s), G; c0 (m/s), rho0 (kg/m³).
     period <= 0: direct mode, targets t_first + k·dt (s), F1A evaluated only on the source steps the window
@@ -435,69 +589,43 @@ def _radiate_kernel(src, vol, surf, gdip, gmono, n_groups, xo, vo, c0, rho0, t_f
     t_first + k·dt (mod period), dt = period/n_out; the samples are extended periodically by
     two steps on each side so every target has a centred stencil.
 
-    Parallel over blocks of OBSERVER_BLOCK observers: each source row is read once per block,
-    the block's per-observer signals accumulate in an unwrapped buffer of 2·n_out samples per
-    group (a periodic target index never exceeds 2·n_out) that is folded into the output.
+    Parallel over blocks of OBSERVER_BLOCK observers; within a block, node after node, observer after observer
+    (:func:`_radiate_periodic`, :func:`_radiate_direct`: every loop over source steps or targets). An observer's
+    signals accumulate node by node in an unwrapped buffer of 2·n_out samples per group (a periodic target index
+    never exceeds 2·n_out), folded into the output; every sum runs in the order of the per-observer formulation,
+    whatever the block.
     """
     n_obs = xo.shape[0]
-    n_node, n_tau = src.shape[0], src.shape[1]
+    n_node, n_tau = src.shape[0], src.shape[2]
     out = np.zeros((n_obs, n_groups, n_out))
-    pad = 2
-    n_ext = n_tau + 2 * pad + 1
-    t_end = t_first + (n_out - 1) * dt
+    n_ext = n_tau + 2 * PAD + 1
     n_blocks = (n_obs + OBSERVER_BLOCK - 1) // OBSERVER_BLOCK
     for blk in prange(n_blocks):
         o_first = blk * OBSERVER_BLOCK
         n_b = min(OBSERVER_BLOCK, n_obs - o_first)
-        obs = _observer_block(xo, vo, o_first, n_b, c0)
-        tb = np.empty((n_ext, OBSERVER_BLOCK))
-        pa = np.zeros((n_ext, OBSERVER_BLOCK))
-        pb = np.zeros((n_ext, OBSERVER_BLOCK))
-        d1a = np.zeros((n_ext, OBSERVER_BLOCK))
-        d2a = np.zeros((n_ext, OBSERVER_BLOCK))
-        d3a = np.zeros((n_ext, OBSERVER_BLOCK))
-        d1b = np.zeros((n_ext, OBSERVER_BLOCK))
-        d2b = np.zeros((n_ext, OBSERVER_BLOCK))
-        d3b = np.zeros((n_ext, OBSERVER_BLOCK))
-        buf = np.zeros((OBSERVER_BLOCK, n_groups, 2 * n_out))
-        lo = np.empty(OBSERVER_BLOCK, dtype=np.int64)
-        hi = np.empty(OBSERVER_BLOCK, dtype=np.int64)
+        xp = np.empty((n_b, 3))
+        ov = np.empty((n_b, 3))
+        inv_a = np.empty(n_b)
+        _observer_block(xo, vo, o_first, n_b, c0, xp, ov, inv_a)
+        work = (np.zeros(n_tau), np.zeros(n_ext), np.zeros(n_ext), np.zeros(n_ext), np.zeros(n_ext), np.zeros(n_ext),
+                np.zeros(n_ext), np.zeros(n_ext), np.zeros((MAX_SLOTS, n_ext)), np.zeros(n_out + MAX_SLOTS))
+        buf = np.zeros((n_b, n_groups, 2 * n_out))
         for i in range(n_node):
-            has_a = gdip[i] >= 0
             compact = vol[i] != 0.0
             has_b = gmono[i] >= 0 and (compact or surf[i])
-            if not has_a and not has_b:
+            if gdip[i] < 0 and not has_b:
                 continue
-            ga = max(gdip[i], 0)
-            gb = max(gmono[i], 0)
-            if period <= 0.0:
-                # reception times first (cheap), then F1A only where some observer's window needs it
-                j_lo, j_hi = _direct_window(src[i], obs, n_b, c0, t_first, t_end, pad, tb, lo, hi)
-                for j in range(j_lo, j_hi):
-                    _emit(src[i, j], j, obs, n_b, tb, pa, pb, has_b and compact, has_b and surf[i], c0, rho0 * vol[i])
-            else:
-                for j in range(n_tau):
-                    _emit(src[i, j], j + pad, obs, n_b, tb, pa, pb, has_b and compact, has_b and surf[i], c0, rho0 * vol[i])
-                _periodic_extension(tb, pa, pb, n_tau, pad, n_b, period)
-                j_lo = 0
-                j_hi = n_ext
-                lo[:] = j_lo
-                hi[:] = j_hi
-            if has_a:
-                _divided_differences(tb, pa, j_lo, j_hi, n_b, d1a, d2a, d3a)
-            if has_b:
-                _divided_differences(tb, pb, j_lo, j_hi, n_b, d1b, d2b, d3b)
+            kind = (gdip[i] >= 0, has_b and compact, has_b and surf[i])
+            node = src[i]
             for b in range(n_b):
-                base = t_first
-                off = 0
+                out_a = buf[b, max(gdip[i], 0)]
+                out_b = buf[b, max(gmono[i], 0)]
                 if period > 0.0:
-                    m0 = int(np.ceil((tb[pad, b] - t_first) / dt))
-                    base = t_first + m0 * dt
-                    off = m0 % n_out
-                if has_a:
-                    _interpolate_add(tb, pa, d1a, d2a, d3a, b, lo[b], hi[b], base, dt, n_out, buf[b, ga], off)
-                if has_b:
-                    _interpolate_add(tb, pb, d1b, d2b, d3b, b, lo[b], hi[b], base, dt, n_out, buf[b, gb], off)
+                    _radiate_periodic(node, kind, rho0 * vol[i], xp[b], ov[b], inv_a[b], tau, c0, t_first, dt,
+                                      n_out, period, out_a, out_b, work)
+                else:
+                    _radiate_direct(node, kind, rho0 * vol[i], xp[b], ov[b], inv_a[b], tau, c0, t_first, dt,
+                                    n_out, out_a, out_b, work)
         _fold_block(buf, out, o_first, n_b)
     return out
 
@@ -516,30 +644,36 @@ def _check_speeds(sources: CompactSources, observers: Observers, c0: float) -> N
 
 
 def _pack_sources(sources: CompactSources, c0: float, period: float):
-    """Kernel arguments: packed rows (n_node, n_tau, N_Q), volumes, surface-panel flags, group indices, group count.
+    """Kernel arguments: sources (n_node, N_S, n_tau), source times (n_tau,), volumes, surface-panel flags, group
+    indices, group count.
 
-    A row holds y, v, a, f, ḟ, jerk (G), M² = |v|²/c0², f_M = f·v/c0, the source time τ_j
-    (periodic sources: τ_0 + j·T/n_tau) and the mass flux Q and its rate (0 without).
+    A node's rows hold y, v, a, f, ḟ, jerk (G), M² = |v|²/c0², f_M = f·v/c0 and the mass flux Q and its rate
+    (0 without); the source times are τ_j (periodic sources: τ_0 + j·T/n_tau). M² and f_M are computed as they
+    always were (einsum over the vectors of a (n_node, n_tau, 23) array, the previous row layout), so their bits
+    are unchanged.
     """
     n_node, n_tau = sources.position_m.shape[:2]
-    src = np.empty((n_node, n_tau, N_Q))
-    for q, value in ((Q_POS, sources.position_m), (Q_VEL, sources.velocity_mps), (Q_ACC, sources.acceleration_mps2),
-                     (Q_FRC, sources.force_N), (Q_FRD, sources.force_rate_N_s), (Q_JERK, sources.jerk_mps3)):
-        src[:, :, q:q + 3] = value
-    vel = src[:, :, Q_VEL:Q_VEL + 3]
-    src[:, :, Q_M2] = np.einsum("ijk,ijk->ij", vel, vel) / (c0 * c0)
-    src[:, :, Q_FM] = np.einsum("ijk,ijk->ij", src[:, :, Q_FRC:Q_FRC + 3], vel) / c0
-    tau = np.asarray(sources.time_s, dtype=float)
-    src[:, :, Q_TAU] = tau[0] + np.arange(n_tau) * (period / n_tau) if period > 0 else tau
+    rows = np.empty((n_node, n_tau, 23))
+    for q, value in enumerate((sources.position_m, sources.velocity_mps, sources.acceleration_mps2, sources.force_N,
+                               sources.force_rate_N_s, sources.jerk_mps3)):
+        rows[:, :, 3 * q:3 * q + 3] = value
+    vel = rows[:, :, S_VEL:S_VEL + 3]
+    src = np.empty((n_node, N_S, n_tau))
+    src[:, :S_M2] = np.moveaxis(rows[:, :, :S_M2], 2, 1)
+    src[:, S_M2] = np.einsum("ijk,ijk->ij", vel, vel) / (c0 * c0)
+    src[:, S_FM] = np.einsum("ijk,ijk->ij", rows[:, :, S_FRC:S_FRC + 3], vel) / c0
+    time_s = np.asarray(sources.time_s, dtype=float)
+    tau = time_s[0] + np.arange(n_tau) * (period / n_tau) if period > 0 else time_s
     if sources.mass_flux_kg_s is None:
-        src[:, :, Q_FLUX:Q_FLUXD + 1] = 0.0
+        src[:, S_FLUX:S_FLUXD + 1] = 0.0
         surface = np.zeros(n_node, dtype=np.bool_)
     else:
-        src[:, :, Q_FLUX] = sources.mass_flux_kg_s
-        src[:, :, Q_FLUXD] = sources.mass_flux_rate_kg_s2
+        src[:, S_FLUX] = sources.mass_flux_kg_s
+        src[:, S_FLUXD] = sources.mass_flux_rate_kg_s2
         surface = np.any(sources.mass_flux_kg_s != 0.0, axis=1) | np.any(sources.mass_flux_rate_kg_s2 != 0.0, axis=1)
     return (
         src,
+        np.ascontiguousarray(tau, dtype=float),
         np.ascontiguousarray(sources.volume_m3, dtype=float),
         surface,
         np.ascontiguousarray(sources.dipole_group, dtype=np.int64),
