@@ -11,6 +11,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from nps.app.io import read_metadata, read_table
 
@@ -47,6 +48,7 @@ def test_dry_run_lists_the_station_loads_jobs(tmp_path):
     assert other.returncode == 0 and "station_loads" not in other.stdout, other.stderr[-2000:]
 
 
+@pytest.mark.slow  # ~80 s: the main + tail rig through snakemake; its stages run in tests/unit/test_rig_multirotor.py
 def test_main_tail_rig_end_to_end(tmp_path):
     root = _work(tmp_path)
     result = _snakemake(root, "-j2", RIG)
