@@ -40,7 +40,8 @@ AIRCRAFT = ("hexacopter", "helicopter")
 def bpm_cases(segment: str, cache_dir: Path) -> list[dict]:
     """The BPM rotors of AIRCRAFT in ``segment``: aircraft, rotor, disk table, rotor configuration, trim row,
     observer positions (G, ascending ids) and the medium's c0 and ν, as the metrics stage reads them."""
-    from nps.app.config import load_campaign, read_yaml, rotor_broadband_models
+    from nps.app.broadband import rotor_broadband_models
+    from nps.app.config import load_campaign, read_yaml
     from nps.app.io import read_table, rotor_path
     from nps.app.plan import CaseConfig, stage_params
     from nps.core.atmosphere import isa

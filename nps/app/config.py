@@ -19,9 +19,7 @@ from typing import Any, Iterable, Iterator, Mapping, Sequence
 import jsonschema
 import yaml
 
-# the broadband model choice (nps.app.broadband, which the metrics, source-hemisphere and summary jobs import
-# without this module), importable from here as well
-from nps.app.broadband import BROADBAND_AUTO, BROADBAND_MODELS, broadband_model, rotor_broadband_models  # noqa: F401
+from nps.app.broadband import broadband_model
 from nps.rotor.airfoils import AirfoilError
 from nps.rotor.blade import BladeError
 from nps.rotor.geometry import RotorGeometry

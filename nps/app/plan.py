@@ -15,7 +15,8 @@ import json
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from nps.app.config import Campaign, broadband_model
+from nps.app.broadband import broadband_model
+from nps.app.config import Campaign
 from nps.noise.metrics import rotor_solidities
 from nps.noise.signals import TONE_SUMS
 

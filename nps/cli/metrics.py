@@ -12,7 +12,7 @@ none, or per rotor BPM outside Pegg's data range and Pegg inside (``--broadband 
 from __future__ import annotations
 
 from nps.cli import command_rotors, fail, option, output_file, parser, plan, provenance, run_stage, signals_variant
-from nps.app.config import BROADBAND_MODELS
+from nps.app.broadband import BROADBAND_MODELS
 
 
 def main(argv: list[str]) -> int:

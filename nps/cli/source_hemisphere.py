@@ -11,7 +11,8 @@ first rotor) by spherical spreading; broadband as the metrics command (``--broad
 from __future__ import annotations
 
 from nps.cli import fail, option, output_file, parser, plan, provenance, run_stage, signals_variant
-from nps.app.config import BROADBAND_MODELS, ConfigError, load_aircraft
+from nps.app.broadband import BROADBAND_MODELS
+from nps.app.config import ConfigError, load_aircraft
 
 
 def main(argv: list[str]) -> int:

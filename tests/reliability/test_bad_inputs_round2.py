@@ -511,7 +511,7 @@ def test_pegg_outside_its_range_reaches_summary_csv(chain, tmp_path):
 
 
 def test_broadband_auto_chooses_bpm_where_pegg_is_outside_its_range(chain):
-    from nps.app.config import rotor_broadband_models
+    from nps.app.broadband import rotor_broadband_models
 
     trim = pd.read_parquet(chain.trim)
     assert rotor_broadband_models("auto", trim, ["main", "tail"]) == {"main": "pegg", "tail": "bpm"}

@@ -10,7 +10,8 @@ import pytest
 
 from nps.core.atmosphere import isa
 from nps.noise.broadband.rotor import hub_frame_observers, medium_from_atmosphere, rotor_broadband_msp
-from nps.app.config import ConfigError, broadband_model, load_aircraft, read_yaml, validate
+from nps.app.broadband import broadband_model
+from nps.app.config import ConfigError, load_aircraft, read_yaml, validate
 from nps.app.io import read_metadata, read_table, write_table
 from nps.noise.metrics import STUDY_BANDS, rotor_solidities
 from nps.rotor.geometry import OperatingPoint, RotorGeometry
