@@ -146,20 +146,20 @@ class Trajectory:
     positions (z ≥ 0 height); segment k flies from knot k to knot k + 1 with constant velocity,
     radiates hemisphere ``hemisphere_index[k]`` and absorbs with ``atmospheres[k]``.
 
-    Optional, for paths that turn and change state (nps.mission.path_noise): ``heading_rad``
-    (n_seg,) χ_k, the angle of the hemisphere's heading axis (its +x) from E's +x toward +y (about
-    +z; None: 0, the straight track along +x), so that a ray leaving in direction n (E) leaves in
-    direction R_z(−χ_k) n of the hemisphere's frame; ``next_hemisphere_index`` and
-    ``hemisphere_weight`` (n_seg,) make segment k radiate the levels (1 − w_k) L[h_k] + w_k L[h'_k]
-    (dB, each hemisphere read at its own co-moving direction and spread from its own radius;
-    None: w = 0).
+    Optional, for paths that turn and change state (nps.mission.path_noise): ``hemisphere_frames``
+    (n_seg, 2, 3, 3), for segment k the rotations from E to the frames of its hemisphere and of its
+    blended hemisphere (a ray leaving in direction n, E, leaves in direction F n of the hemisphere;
+    None: the identity, the straight track along +x of a hemisphere computed for this very flight;
+    :func:`turn_about_z` for a heading); ``next_hemisphere_index`` and ``hemisphere_weight`` (n_seg,)
+    make segment k radiate the levels (1 − w_k) L[h_k] + w_k L[h'_k] (dB, each hemisphere read at its
+    own co-moving direction and spread from its own radius; None: w = 0).
     """
 
     time_s: np.ndarray
     position_m: np.ndarray
     hemisphere_index: np.ndarray
     atmospheres: tuple[AtmosphereState | None, ...]
-    heading_rad: np.ndarray | None = None
+    hemisphere_frames: np.ndarray | None = None
     next_hemisphere_index: np.ndarray | None = None
     hemisphere_weight: np.ndarray | None = None
 
@@ -175,9 +175,12 @@ class Trajectory:
             raise PropagationError("trajectory: the flight path goes below the ground (z < 0)")
         if np.asarray(self.hemisphere_index).shape != (n,) or len(self.atmospheres) != n:
             raise PropagationError(f"trajectory: need one hemisphere index and one atmosphere per segment ({n})")
-        if self.heading_rad is not None and (np.shape(self.heading_rad) != (n,) or
-                                             not np.all(np.isfinite(self.heading_rad))):
-            raise PropagationError(f"trajectory: heading_rad must hold one finite angle per segment ({n})")
+        if self.hemisphere_frames is not None:
+            f = np.asarray(self.hemisphere_frames, float)
+            gram = np.einsum("...ji,...jk->...ik", f, f) if f.shape == (n, 2, 3, 3) else None
+            if gram is None or not np.all(np.isfinite(f)) or np.abs(gram - np.eye(3)).max() > 1e-9:
+                raise PropagationError(f"trajectory: hemisphere_frames must hold two rotation matrices (3 x 3, "
+                                       f"orthonormal) per segment, shape ({n}, 2, 3, 3)")
         if (self.next_hemisphere_index is None) != (self.hemisphere_weight is None):
             raise PropagationError("trajectory: next_hemisphere_index and hemisphere_weight go together")
         if self.hemisphere_weight is not None:
@@ -316,9 +319,17 @@ def _map_weights(h_el, n_az, h_daz, m0, m1, m2, mlen):
 
 
 @kernel(inline=True)
-def _hemisphere_reading(h_el, n_az, h_daz, h_radius, h_mach, h, n0, n1, n2, re):
-    """Where hemisphere h hears the ray leaving in direction n (its frame) at emission distance r_e: the map
-    weights of d = (n − M_h)/|n − M_h| (:func:`_map_weights`) and the spreading 20 log10(r_e |n − M_h| / r_h)."""
+def _hemisphere_reading(h_el, n_az, h_daz, h_radius, h_mach, h, frames, turned, k, slot, n0, n1, n2, re):
+    """Where hemisphere h hears the ray leaving in direction n (E) at emission distance r_e: n in the hemisphere's
+    frame (``frames[k, slot]`` when ``turned[k]``), the map weights of d = (n − M_h)/|n − M_h|
+    (:func:`_map_weights`) and the spreading 20 log10(r_e |n − M_h| / r_h)."""
+    if turned[k]:
+        f = frames[k, slot]
+        t0 = f[0, 0] * n0 + f[0, 1] * n1 + f[0, 2] * n2
+        t1 = f[1, 0] * n0 + f[1, 1] * n1 + f[1, 2] * n2
+        n2 = f[2, 0] * n0 + f[2, 1] * n1 + f[2, 2] * n2
+        n0 = t0
+        n1 = t1
     m0 = n0 - h_mach[h, 0]
     m1 = n1 - h_mach[h, 1]
     m2 = n2 - h_mach[h, 2]
@@ -422,13 +433,13 @@ def _ground_and_weighting(out, x0, x1, x2, s0, s1, s2, re, k_edge, ground_kind, 
 
 
 @kernel(parallel=True)
-def _propagate_kernel(rec, times, c, knot_t, knot_p, vel, hemi_of_seg, hemi_next, hemi_weight, heading_cs, h_levels, h_el, h_daz, h_radius, h_mach,
+def _propagate_kernel(rec, times, c, knot_t, knot_p, vel, hemi_of_seg, hemi_next, hemi_weight, frames, turned, h_levels, h_el, h_daz, h_radius, h_mach,
                       alpha, a_weight, k_edge, ground_kind, coherent, beta, store_bands,
                       la_out, seg_out, bands_out):
     """Per receiver (parallel) and reception time: band levels (1), A-weighted level, segment.
 
     ``hemi_of_seg``, ``hemi_next``, ``hemi_weight`` (n_seg,) the segments' hemispheres and blend weights,
-    ``heading_cs`` (n_seg, 2) cos χ_k, sin χ_k (:class:`Trajectory`);
+    ``frames`` (n_seg, 2, 3, 3) the rotations E → hemisphere frames, applied where ``turned`` (n_seg,) (:class:`Trajectory`);
     ``h_levels`` (n_hemi, n_el, n_az, n_b) dB; ``alpha`` (n_seg, n_b) dB/m; ``beta`` (n_b,)
     normalised admittance for the impedance ground (ground_kind 2), ground_kind 1 = hard,
     0 = none. Outputs: ``la_out`` (n_r, n_t) dB(A), ``seg_out`` (n_r, n_t) emitting segment or
@@ -465,20 +476,15 @@ def _propagate_kernel(rec, times, c, knot_t, knot_p, vel, hemi_of_seg, hemi_next
             n0 = r0 / re
             n1 = r1 / re
             n2 = r2 / re
-            # the ray's direction in the hemisphere's frame (turned by −χ_k about z)
-            hn0 = n0
-            hn1 = n1
-            if heading_cs[k, 1] != 0.0 or heading_cs[k, 0] != 1.0:
-                hn0 = heading_cs[k, 0] * n0 + heading_cs[k, 1] * n1
-                hn1 = heading_cs[k, 0] * n1 - heading_cs[k, 1] * n0
             h = hemi_of_seg[k]
-            e0, we, a0, a1, wa, spread = _hemisphere_reading(h_el, n_az, h_daz, h_radius, h_mach, h, hn0, hn1, n2, re)
+            e0, we, a0, a1, wa, spread = _hemisphere_reading(h_el, n_az, h_daz, h_radius, h_mach, h, frames, turned,
+                                                             k, 0, n0, n1, n2, re)
             w2 = hemi_weight[k]
             h2 = hemi_next[k]
             e0b, web, a0b, a1b, wab, spread2 = e0, we, a0, a1, wa, spread
             if w2 > 0.0:
-                e0b, web, a0b, a1b, wab, spread2 = _hemisphere_reading(h_el, n_az, h_daz, h_radius, h_mach, h2, hn0,
-                                                                        hn1, n2, re)
+                e0b, web, a0b, a1b, wab, spread2 = _hemisphere_reading(h_el, n_az, h_daz, h_radius, h_mach, h2, frames,
+                                                                        turned, k, 1, n0, n1, n2, re)
             # Doppler: shift by δ bands with the trajectory's Mach number toward the receiver
             mr = (vel[k, 0] * n0 + vel[k, 1] * n1 + vel[k, 2] * n2) / c
             delta = -10.0 * np.log10(1.0 - mr)
@@ -528,17 +534,25 @@ def _check_inputs(hemispheres, trajectory, receivers, speed_of_sound_mps):
     return bands, rec
 
 
-def _segment_states(trajectory: Trajectory) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Per segment: the blended hemisphere's index, its weight and (cos χ, sin χ) of the heading (kernel layout)."""
+def turn_about_z(heading_rad) -> np.ndarray:
+    """(..., 3, 3) rotations E → the level heading frame of headings χ (rad, from +x toward +y): R_z(−χ)."""
+    c, s = np.cos(heading_rad), np.sin(heading_rad)
+    zero, one = np.zeros_like(c), np.ones_like(c)
+    return np.stack([np.stack([c, s, zero], -1), np.stack([-s, c, zero], -1), np.stack([zero, zero, one], -1)], -2)
+
+
+def _segment_states(trajectory: Trajectory) -> tuple[np.ndarray, ...]:
+    """Per segment: the blended hemisphere's index and weight, the frames and whether they turn (kernel layout)."""
     n = np.asarray(trajectory.hemisphere_index).size
     if trajectory.hemisphere_weight is None:
         nxt, weight = np.zeros(n, dtype=np.int64), np.zeros(n)
     else:
         nxt = np.ascontiguousarray(trajectory.next_hemisphere_index, dtype=np.int64)
         weight = np.ascontiguousarray(trajectory.hemisphere_weight, dtype=float)
-    heading = np.zeros(n) if trajectory.heading_rad is None else np.asarray(trajectory.heading_rad, float)
-    heading_cs = np.ascontiguousarray(np.stack([np.cos(heading), np.sin(heading)], axis=-1))
-    return nxt, weight, heading_cs
+    if trajectory.hemisphere_frames is None:
+        return nxt, weight, np.zeros((n, 2, 3, 3)), np.zeros(n, dtype=np.bool_)
+    frames = np.ascontiguousarray(trajectory.hemisphere_frames, dtype=float)
+    return nxt, weight, frames, np.any(frames != np.eye(3), axis=(1, 2, 3))
 
 
 def propagate(hemispheres, trajectory: Trajectory, receivers, time_s, speed_of_sound_mps: float,

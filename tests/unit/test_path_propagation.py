@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from nps.mission.propagation import Ground, Hemisphere, PropagationError, Trajectory, propagate
+from nps.mission.propagation import Ground, Hemisphere, PropagationError, Trajectory, propagate, turn_about_z
 from nps.noise.spectra import LEVEL_FLOOR_DB
 
 from test_footprint import AZ, BANDS, C, EL, omnidirectional
@@ -21,8 +21,8 @@ def directional(seed: int, velocity=(40.0, 0.0, -3.0)) -> Hemisphere:
 
 
 def test_turned_path_equals_the_path_along_x_with_receivers_turned():
-    """Heading χ: flying along (cos χ, sin χ) with heading χ is flying along +x with every receiver turned by −χ
-    about the start point (same spreading, Doppler, ground); levels equal to 1e-9 dB."""
+    """Heading χ: flying along (cos χ, sin χ) with the hemisphere turned to heading χ (frames R_z(−χ)) is flying
+    along +x with every receiver turned by −χ about the start point (same spreading, Doppler, ground): 1e-9 dB."""
     chi = np.radians(57.0)
     rot = np.array([[np.cos(chi), -np.sin(chi), 0.0], [np.sin(chi), np.cos(chi), 0.0], [0.0, 0.0, 1.0]])
     t = np.array([0.0, 40.0])
@@ -32,7 +32,8 @@ def test_turned_path_equals_the_path_along_x_with_receivers_turned():
     times = np.arange(0.0, 50.0, 0.5)
     hemi = [directional(1)]
     straight = propagate(hemi, Trajectory(t, along_x, np.array([0]), (None,)), rec_x, times, C, Ground("hard"))
-    turned = propagate(hemi, Trajectory(t, along_x @ rot.T, np.array([0]), (None,), heading_rad=np.array([chi])),
+    frames = np.stack([turn_about_z(chi)] * 2)[None]
+    turned = propagate(hemi, Trajectory(t, along_x @ rot.T, np.array([0]), (None,), hemisphere_frames=frames),
                        rec_x @ rot.T, times, C, Ground("hard"))
     heard = straight.la_db > LEVEL_FLOOR_DB
     assert heard.sum() > 1000
@@ -113,8 +114,8 @@ def test_bad_state_fields_are_refused():
         Trajectory(t, p, np.array([0]), (None,), hemisphere_weight=np.array([0.5]))
     with pytest.raises(PropagationError, match="within \\[0, 1\\]"):
         Trajectory(t, p, np.array([0]), (None,), next_hemisphere_index=np.array([0]), hemisphere_weight=np.array([1.5]))
-    with pytest.raises(PropagationError, match="heading_rad"):
-        Trajectory(t, p, np.array([0]), (None,), heading_rad=np.array([np.nan]))
+    with pytest.raises(PropagationError, match="hemisphere_frames"):
+        Trajectory(t, p, np.array([0]), (None,), hemisphere_frames=np.full((1, 2, 3, 3), 0.5))
     with pytest.raises(PropagationError, match="next_hemisphere_index must lie"):
         propagate([omnidirectional(90.0, (1.0, 0.0, 0.0))],
                   Trajectory(t, p, np.array([0]), (None,), next_hemisphere_index=np.array([3]),
