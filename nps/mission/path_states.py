@@ -35,6 +35,8 @@ from nps.core.atmosphere import AtmosphereState
 from nps.mission.paths import PathHistory
 from nps.rotor.trim import G0_M_S2, FlightCondition
 
+# a sample within this many lattice units of its state's point takes that state alone (rounding of the scaling)
+WEIGHT_FLOOR = 1e-9
 COORDINATES = ("advance_ratio", "effective_flight_path_deg", "normal_load_increment", "lateral_load_factor",
                "rotor_speed_fraction")
 
@@ -86,7 +88,7 @@ def choose_states(coordinates: np.ndarray, tolerances: StateTolerances) -> PathS
     equal points are one state. The runs of equal states along the path bracket each sample with the state
     of the previous or next run: the weight w = clip((u − A)·(B − A)/|B − A|², 0, 1) in lattice units
     (u the sample, A its state, B the neighbour that gives the larger w), so that (1 − w) A + w B follows
-    the path between the lattice points."""
+    the path between the lattice points (w below WEIGHT_FLOOR: 0)."""
     scaled = coordinates / tolerances.spacing
     lattice = np.rint(scaled).astype(np.int64)
     keys, first, state = np.unique(lattice, axis=0, return_index=True, return_inverse=True)
@@ -105,7 +107,7 @@ def choose_states(coordinates: np.ndarray, tolerances: StateTolerances) -> PathS
         step = points[other] - points[state]
         length2 = np.einsum("ij,ij->i", step, step)
         along = np.einsum("ij,ij->i", scaled - points[state], step) / np.where(length2 > 0, length2, 1.0)
-        candidate = np.where(length2 > 0, np.clip(along, 0.0, 1.0), 0.0)
+        candidate = np.where((length2 > 0) & (along > WEIGHT_FLOOR), np.clip(along, 0.0, 1.0), 0.0)
         better = candidate > weight
         neighbour, weight = np.where(better, other, neighbour), np.where(better, candidate, weight)
     return PathStates(keys[order], keys[order] * tolerances.spacing, state, neighbour, weight)

@@ -330,8 +330,10 @@ def _solve_leg(index: int, spec: LegSpec, entry: _Entry, change_g: float) -> Leg
 
     low, high = -_GAMMA_BRACKET_RAD, _GAMMA_BRACKET_RAD
     if excess(low) > 0.0 or excess(high) < 0.0:
-        raise PathError(f"{where}.height_change_m", f"a height change of {spec.height_change_m} m cannot be flown in this "
-                                                    f"leg at flight-path angles within ±{math.degrees(_GAMMA_BRACKET_RAD):g}°")
+        raise PathError(f"{where}.height_change_m", (
+            f"a height change of {spec.height_change_m} m cannot be flown in this leg with flight-path angles within "
+            f"±{math.degrees(_GAMMA_BRACKET_RAD):g}° reached at the rate g flight_path_change_g / V = {change_g} g / "
+            f"{entry.speed_mps:.4g} m/s: expected a longer leg, a smaller height change or a larger flight_path_change_g"))
     return _build(index, spec, entry, brentq(excess, low, high, xtol=1e-13, rtol=1e-15), change_g, where)
 
 
