@@ -239,11 +239,18 @@ def _balance(aircraft: dict, flight: FlightCondition, states: list[_RotorState])
     except ConvergenceError as failure:
         raise AircraftTrimError(
             f"aircraft '{aircraft['name']}' did not trim at V_h={flight.forward_speed_mps} m/s, "
-            f"V_c={flight.climb_speed_mps} m/s: residuals {failure.value} (forces/W, moments/(W R)); inputs to check: "
+            f"V_c={flight.climb_speed_mps} m/s{_acceleration_text(flight)}: residuals {failure.value} (forces/W, moments/(W R)); inputs to check: "
             f"gross_weight_kg, fuselage_drag_area_m2, the rotors' hub_position_m and thrust_axis_body (force and "
             f"moment balance), and the segment's speeds"
         ) from failure
     return solution.x, solution.iterations
+
+
+def _acceleration_text(flight: FlightCondition) -> str:
+    """``, a=(x, y, z) m/s²`` of an accelerated flight for a message, "" in steady flight."""
+    if not any(flight.acceleration_mps2):
+        return ""
+    return ", a=(" + ", ".join(f"{c:.4g}" for c in flight.acceleration_mps2) + ") m/s²"
 
 
 def _check_thrusts(aircraft: dict, states: list[_RotorState], thrusts: np.ndarray) -> None:
