@@ -257,8 +257,11 @@ def _leg_time(spec: LegSpec, speed0: float, where: str) -> tuple[float | None, f
         duration = 2.0 * length / (speed0 + spec.end_speed_mps)
         return duration, (spec.end_speed_mps - speed0) / duration
     a = 0.0 if a is None else a
+    if a == 0.0 and speed0 <= 0.0:
+        raise PathError(f"{where}.straight.distance_m", "a leg without speed covers no distance: expected duration_s "
+                                                        "(hover), an acceleration_mps2 or an end_speed_mps")
     discriminant = speed0 * speed0 + 2.0 * a * length
-    if discriminant < 0.0 or (a == 0.0 and speed0 <= 0.0):
+    if discriminant < 0.0:
         raise PathError(f"{where}.acceleration_mps2", f"the speed reaches zero before the leg's distance_m {length} m "
                                                       f"(start speed {speed0:.4g} m/s, a_x {a} m/s²): expected a milder "
                                                       "deceleration or a shorter leg")

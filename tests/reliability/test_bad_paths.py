@@ -49,6 +49,8 @@ CASES = {
     "hard_deceleration": (lambda d: d["legs"][0].update(straight={"distance_m": 100.0}, end_speed_mps=5.0), "legs[0].end_speed_mps", "longitudinal acceleration"),
     "zero_heading_change": (lambda d: d["legs"][1]["turn"].update(heading_change_deg=0.0), "legs[1].turn.heading_change_deg",
                             "non-zero heading change"),
+    "distance_in_hover": (lambda d: d["start"].update(speed_mps=0.0), "legs[0].straight.distance_m",
+                          "a leg without speed covers no distance"),
     "name_not_stem": (lambda d: d.update(name="other"), "name", "expected the file stem 'p'"),
     "nan_speed": (lambda d: d["start"].update(speed_mps=float("nan")), "start.speed_mps", "finite number"),
 }
