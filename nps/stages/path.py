@@ -64,12 +64,14 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     where, keys, tables, findings = str(outputs["states"]), [], [], []
     for index, values in enumerate(states.values):
         flight, fraction = state_flight(values, tip_speed, atmosphere)
+        keys.append(state_key(flight, fraction))
+        if keys[-1] in keys[:-1]:  # the same trim input (at μ = 0 neither γ_e nor a_x enters): one state
+            continue
         scale = {rotor["name"]: fraction for rotor in aircraft["rotors"]}
         before = validity.aircraft_findings(aircraft, atmosphere.speed_of_sound_mps, scale)
         validity.recorded(before, params, where)  # refuses before the trim unless allowed
         trim = trim_rotor_speeds(aircraft, flight, scale, grid)
         findings += before + validity.trim_findings(aircraft, trim)
-        keys.append(state_key(flight, fraction))
         n_v = np.cos(np.radians(values[1])) + values[2]
         fields = {"state": keys[-1], "state_index": np.int32(index), **dict(zip(COORDINATES, values)),
                   "load_factor": float(np.hypot(n_v, values[3])), "bank_rad": float(np.arctan2(values[3], n_v)),
@@ -81,5 +83,5 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     write_table(history_table(history, coordinates, states, keys), outputs["history"], stage="path", metadata=meta)
     write_table(pd.concat(tables, ignore_index=True), outputs["states"], stage="path", metadata=meta)
     return (f"path '{params['path_config']['name']}' ({aircraft['name']}): {len(legs)} legs, "
-            f"{history.time_s[-1]:.1f} s, {len(history.time_s)} samples, {len(keys)} trim states"
+            f"{history.time_s[-1]:.1f} s, {len(history.time_s)} samples, {len(tables)} trim states"
             + validity.report(warnings))

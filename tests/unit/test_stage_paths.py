@@ -48,3 +48,8 @@ def test_path_command_and_run_write_identical_artifacts(tmp_path, repo_root):
     path.run({}, {"history": tmp_path / "run/path_history.parquet", "states": tmp_path / "run/path_states.parquet"}, params)
     for name in ("path_history.parquet", "path_states.parquet"):
         assert (tmp_path / "cli" / name).read_bytes() == (tmp_path / "run" / name).read_bytes(), name
+    import pandas as pd
+
+    states = pd.read_parquet(tmp_path / "run/path_states.parquet")  # hover at the start of the acceleration: one key
+    assert (states.groupby("state").size() == 6).all()
+    assert set(pd.read_parquet(tmp_path / "run/path_history.parquet").state) <= set(states.state)
