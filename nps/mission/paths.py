@@ -16,8 +16,13 @@ continuous):
   s_h(τ) = ∫ V cos γ dτ the horizontal arc and σ = ±1 the turn side (+1 port);
 * rotor-speed fraction linear in τ from the entering value to the leg's end value.
 
-With C(τ) = ∫_0^τ V e^{iγ} dτ' (closed form below), s_h = Re C and the height change Im C; the horizontal
-position is the straight line or the circle arc of length s_h. The velocity is V (cos γ cos ψ, cos γ sin ψ,
+With C(τ) = ∫_0^τ V e^{iγ} dτ', s_h = Re C and the height change Im C; the horizontal position is the straight
+line or the circle arc of length s_h. During the change (τ ≤ t_γ = |γ_1 − γ_in|/|q|)
+
+    C(τ) = e^{iγ_in} [V_0 (e^{iqτ} − 1)/(iq) + a_x (τ e^{iqτ}/(iq) + (e^{iqτ} − 1)/q²)]
+
+(e^{iqτ} − 1 = −2 sin²(qτ/2) + i sin qτ, free of cancellation), after it C(t_γ) + e^{iγ_1}(V(t_γ) τ' + a_x τ'²/2),
+τ' = τ − t_γ. The velocity is V (cos γ cos ψ, cos γ sin ψ,
 sin γ); the acceleration a = a_x V̂ + V γ̇ ∂V̂/∂γ + V ψ̇ ∂V̂/∂ψ with ψ̇ = σ V cos γ / R.
 
 Load factor and bank, from the specific force f = a + g ẑ (what the rotors and the airframe's drag carry per
