@@ -130,6 +130,13 @@ def state_flight(values: np.ndarray, tip_speed_mps: float, atmosphere: Atmospher
     return FlightCondition(speed * math.cos(gamma_e), _clean(speed * math.sin(gamma_e)), atmosphere, acceleration), fraction
 
 
+def state_speeds(flight: FlightCondition, fraction: float, rotors: list[str]) -> dict:
+    """A state as a mission segment's speeds entry for the trim (nps.stages.trim): forward and climb speed,
+    ``rotor_omega_scale`` (the fraction for every rotor in ``rotors``) and ``acceleration_mps2`` (G)."""
+    return {"forward_speed_mps": flight.forward_speed_mps, "climb_speed_mps": flight.climb_speed_mps,
+            "rotor_omega_scale": {name: fraction for name in rotors}, "acceleration_mps2": list(flight.acceleration_mps2)}
+
+
 def state_key(flight: FlightCondition, fraction: float) -> str:
     """Deterministic key of a state's trim input: ``s`` + 12 hex digits of the SHA-1 of its canonical JSON
     (speeds, acceleration and rotor-speed fraction rounded to 1e-9; the atmosphere is the campaign's)."""

@@ -8,8 +8,9 @@ path, nps.app.config.load_path), ``paths`` (dt_s, state_tolerances), ``atmospher
 relative_humidity_pct: the states are trimmed in the campaign atmosphere, as mission segments are), ``n_psi``,
 ``n_r`` (loads that solve rpm-controlled rotor speeds), optional ``allow_outside_validity``.
 
-Each state is describable as a mission segment's entry (``segment_speeds`` columns: forward and climb speed,
-one rotor-speed fraction for every rotor) plus its acceleration, so the noise chain can run per (aircraft, state).
+Each state is a mission segment's speeds entry plus its acceleration (:func:`nps.mission.path_states.state_speeds`),
+trimmed by the trim stage's own function (:func:`nps.stages.trim.trimmed`): the trim stage given that entry writes
+the state's rows, so the noise chain can run per (aircraft, state) as it runs per (aircraft, segment).
 """
 
 from __future__ import annotations
@@ -20,10 +21,10 @@ import pandas as pd
 from nps.app import validity
 from nps.app.io import write_table
 from nps.core.atmosphere import isa
-from nps.mission.path_states import COORDINATES, StateTolerances, choose_states, state_coordinates, state_flight, state_key
+from nps.mission.path_states import (COORDINATES, StateTolerances, choose_states, state_coordinates, state_flight, state_key,
+                                     state_speeds)
 from nps.mission.paths import flight_path_history, path_spec
-from nps.rotor.bet import DiskGrid
-from nps.rotor.control import trim_rotor_speeds
+from nps.stages.trim import trimmed
 
 HISTORY_COLUMNS = (
     "time_s", "leg", "x_m", "y_m", "z_m", "vel_x_mps", "vel_y_mps", "vel_z_mps", "acc_x_mps2", "acc_y_mps2", "acc_z_mps2",
@@ -60,18 +61,15 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     legs, history = flight_path_history(path_spec(params["path_config"]), float(settings["dt_s"]))
     coordinates = state_coordinates(history, tip_speed)
     states = choose_states(coordinates, StateTolerances(**settings["state_tolerances"]))
-    grid = DiskGrid(int(params["n_psi"]), int(params["n_r"]))
     where, keys, tables, findings = str(outputs["states"]), [], [], []
     for index, values in enumerate(states.values):
         flight, fraction = state_flight(values, tip_speed, atmosphere)
         keys.append(state_key(flight, fraction))
         if keys[-1] in keys[:-1]:  # the same trim input (at μ = 0 neither γ_e nor a_x enters): one state
             continue
-        scale = {rotor["name"]: fraction for rotor in aircraft["rotors"]}
-        before = validity.aircraft_findings(aircraft, atmosphere.speed_of_sound_mps, scale)
-        validity.recorded(before, params, where)  # refuses before the trim unless allowed
-        trim = trim_rotor_speeds(aircraft, flight, scale, grid)
-        findings += before + validity.trim_findings(aircraft, trim)
+        trim, found = trimmed(aircraft, state_speeds(flight, fraction, [r["name"] for r in aircraft["rotors"]]), atmosphere,
+                              params, where)
+        findings += found
         n_v = np.cos(np.radians(values[1])) + values[2]
         fields = {"state": keys[-1], "state_index": np.int32(index), **dict(zip(COORDINATES, values)),
                   "load_factor": float(np.hypot(n_v, values[3])), "bank_rad": float(np.arctan2(values[3], n_v)),

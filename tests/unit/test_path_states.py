@@ -9,7 +9,7 @@ import pytest
 from nps.__main__ import main as nps_main
 from nps.core.atmosphere import isa
 from nps.mission.path_states import StateTolerances, choose_states, state_flight, state_key
-from nps.rotor.trim import TRIM_COLUMNS, FlightCondition, trim_aircraft
+from nps.rotor.trim import TRIM_COLUMNS, FlightCondition
 
 TOL = StateTolerances(0.01, 1.0, 0.05, 0.02)
 
@@ -57,8 +57,13 @@ def test_keys_are_deterministic_and_shared_by_equal_states():
 
 
 def test_path_command_writes_the_history_and_the_trimmed_states(tmp_path, repo_root):
-    """The stabilised 6° approach: the history's times and bracketing keys, and the steady −6° state's trim equal
-    to the aircraft trim of its canonical flight bit for bit."""
+    """The stabilised 6° approach: the history's times and bracketing keys; the steady −6° state is a mission
+    segment's flight (zero acceleration); the trim stage given a state's speeds entry (state_speeds: here a
+    push-over state, with its acceleration) writes that state's trim rows bit for bit."""
+    from nps.app.config import load_aircraft
+    from nps.mission.path_states import state_speeds
+    from nps.stages import trim as trim_stage
+
     out = tmp_path / "approach"
     status = nps_main(["path", "--aircraft", str(repo_root / "config/aircraft/helicopter.yaml"),
                        "--path", str(repo_root / "config/paths/helicopter_approach_6deg.yaml"), "--out", str(out)])
@@ -69,9 +74,17 @@ def test_path_command_writes_the_history_and_the_trimmed_states(tmp_path, repo_r
     assert set(TRIM_COLUMNS) <= set(states.columns) and (states.groupby("state").size() == 2).all()
     final = states[states.state == history.state.iloc[-1]].reset_index(drop=True)
     assert final.effective_flight_path_deg.iloc[0] == -6.0 and final.normal_load_increment.iloc[0] == 0.0
-    from nps.app.config import load_aircraft
-
-    flight = FlightCondition(final.forward_speed_mps.iloc[0], final.climb_speed_mps.iloc[0], isa(0.0))
-    trim = trim_aircraft(load_aircraft(repo_root / "config/aircraft/helicopter.yaml"), flight)
+    assert (final[["state_acc_x_mps2", "state_acc_y_mps2", "state_acc_z_mps2"]].to_numpy() == 0.0).all()
+    push_over = states[states.normal_load_increment < 0].reset_index(drop=True)
+    chosen = push_over[push_over.state == push_over.state.iloc[0]].reset_index(drop=True)
+    flight = FlightCondition(chosen.forward_speed_mps.iloc[0], chosen.climb_speed_mps.iloc[0], isa(0.0),
+                             tuple(chosen[f"state_acc_{c}_mps2"].iloc[0] for c in "xyz"))
+    assert flight.acceleration_mps2[2] < 0.0
+    speeds = state_speeds(flight, 1.0, ["main", "tail"])
+    trim_stage.run({}, {"trim": tmp_path / "trim.parquet"}, {
+        "aircraft_config": load_aircraft(repo_root / "config/aircraft/helicopter.yaml"), "speeds": speeds,
+        "atmosphere": {"altitude_m": 0.0, "isa_delta_K": 0.0, "relative_humidity_pct": 70.0}, "segment": "seg0",
+        "n_psi": 360, "n_r": 50})
+    trim = pd.read_parquet(tmp_path / "trim.parquet")
     for column in TRIM_COLUMNS:
-        assert np.array_equal(final[column].to_numpy(), trim[column].to_numpy()), column
+        assert np.array_equal(chosen[column].to_numpy(), trim[column].to_numpy()), column
