@@ -99,3 +99,16 @@ def test_deceleration_equals_descent_at_the_effective_flight_path_angle(helicopt
     equivalent = trim_aircraft(helicopter, flight).set_index("rotor")
     for column in ("thrust_N", "ct", "mu_x", "mu_z", "lambda_i", "power_W"):
         np.testing.assert_allclose(equivalent[column], decelerating[column], rtol=1e-9, atol=1e-13, err_msg=column)
+
+
+@pytest.mark.parametrize("side", [1.0, -1.0])
+def test_helicopter_turn_rolls_by_the_bank_about_its_level_roll(helicopter, side):
+    """The helicopter (tail rotor, drag) in a level turn at 30 m/s on R = 300 m: the roll is the level trim's
+    (−1.94°, the tail rotor's side force) plus the bank atan(V²/(gR)) = 17.01° toward the turn (measured within
+    0.02°), and the main-rotor thrust is the level one times n (measured within 3e-5)."""
+    speed, radius = 30.0, 300.0
+    bank = math.atan(speed**2 / (G0_M_S2 * radius))
+    level = trim_aircraft(helicopter, FlightCondition(speed, 0.0, isa(0.0))).set_index("rotor")
+    turn = trim_aircraft(helicopter, FlightCondition(speed, 0.0, isa(0.0), (0.0, side * speed**2 / radius, 0.0))).set_index("rotor")
+    assert math.degrees(turn.roll_rad["main"] - level.roll_rad["main"] + side * bank) == pytest.approx(0.0, abs=0.05)
+    assert turn.thrust_N["main"] / level.thrust_N["main"] == pytest.approx(1.0 / math.cos(bank), rel=1e-4)
