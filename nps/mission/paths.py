@@ -430,7 +430,9 @@ def _limit_field(leg: LegSpec, index: int, what: str) -> str:
     """The field a limit violation of a leg names: what sets the bank, the acceleration or the angle."""
     where = f"legs[{index}]"
     if what == "turn":
-        return f"{where}.turn.radius_m" if leg.radius_m is not None else (f"{where}.turn.bank_deg" if leg.kind == "turn" else where)
+        if leg.kind != "turn":  # a straight leg's load factor comes from its flight-path change
+            return "flight_path_change_g"
+        return f"{where}.turn.radius_m" if leg.radius_m is not None else f"{where}.turn.bank_deg"
     if what == "speed":
         return f"{where}.end_speed_mps" if leg.end_speed_mps is not None else f"{where}.acceleration_mps2"
     return f"{where}.height_change_m" if leg.height_change_m is not None else f"{where}.flight_path_deg"

@@ -51,6 +51,8 @@ CASES = {
                             "non-zero heading change"),
     "distance_in_hover": (lambda d: d["start"].update(speed_mps=0.0), "legs[0].straight.distance_m",
                           "a leg without speed covers no distance"),
+    "hard_push_over": (lambda d: (d.update(flight_path_change_g=0.6), d["legs"][0].update(flight_path_deg=-5.0)),
+                       "flight_path_change_g", "load factor 0.4"),
     "name_not_stem": (lambda d: d.update(name="other"), "name", "expected the file stem 'p'"),
     "nan_speed": (lambda d: d["start"].update(speed_mps=float("nan")), "start.speed_mps", "finite number"),
 }
