@@ -12,7 +12,7 @@ import copy
 import difflib
 import functools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Iterable, Iterator, Mapping, Sequence
 
@@ -617,6 +617,12 @@ def load_path(path: str | Path, dt_s: float | None = None, document: Any = None)
     document = read_yaml(path) if document is None else copy.deepcopy(document)
     data = fill_defaults(validate(document, "path", path), load_schema("path"))
     problems = [problem for index, leg in enumerate(data["legs"]) for problem in _path_leg_problems(leg, f"legs[{index}]")]
+    receivers = data["receivers"]
+    problems += [(f"receivers.microphones.{name}", f"expected a height z >= 0 above the ground, got {xyz[2]!r}")
+                 for name, xyz in receivers["microphones"].items() if xyz[2] < 0]
+    if "grid" in receivers:
+        problems += [(f"receivers.grid.{axis}", f"expected [low, high] with high > low, got {receivers['grid'][axis]}")
+                     for axis in ("x_range_m", "y_range_m") if receivers["grid"][axis][1] <= receivers["grid"][axis][0]]
     if Path(path).stem != data["name"]:
         problems.append(("name", f"expected the file stem '{Path(path).stem}', got '{data['name']}'"))
     _raise(path, problems)
@@ -641,9 +647,40 @@ class Campaign:
     mission: dict
     segments: list[str]
     written: dict
+    # flight paths (:meth:`with_paths`): path name → validated path; path name → its trim-state keys (unique, in
+    # order of first visit); state key → {"aircraft": {aircraft: speeds entry}} (equal states of paths share a key)
+    paths: dict[str, dict] = field(default_factory=dict)
+    path_keys: dict[str, list[str]] = field(default_factory=dict)
+    path_states: dict[str, dict] = field(default_factory=dict)
 
     def segment(self, segment_id: str) -> dict:
+        """A mission segment, or a path state as a segment (``id`` the state key, its speeds per aircraft)."""
+        if segment_id in self.path_states:
+            return {"id": segment_id, "name": f"path state {segment_id}", **self.path_states[segment_id]}
         return next(s for s in self.mission["segments"] if s["id"] == segment_id)
+
+    def with_paths(self, paths: dict[str, dict]) -> "Campaign":
+        """This campaign with the flight ``paths`` (name → validated path, :func:`load_path`) and the trim states
+        that cover each (nps.mission.path_states.plan_path in the campaign's atmosphere and ``paths``
+        settings). A path's aircraft must be one of the campaign's."""
+        from nps.core.atmosphere import isa
+        from nps.mission.path_states import plan_path
+
+        atm = self.config["atmosphere"]
+        atmosphere = isa(atm["altitude_m"], atm["isa_delta_K"], atm["relative_humidity_pct"])
+        states: dict[str, dict] = {}
+        keys: dict[str, list[str]] = {}
+        for name, path in paths.items():
+            if path["aircraft"] not in self.aircraft:
+                raise ConfigError(f"config/paths/{name}.yaml: aircraft: expected an aircraft of the campaign "
+                                  f"({', '.join(self.aircraft)}), got '{path['aircraft']}'")
+            aircraft = self.aircraft[path["aircraft"]]
+            plan = plan_path(aircraft, path, self.config["paths"], atmosphere)
+            entries = plan.speeds([r["name"] for r in aircraft["rotors"]])
+            for key, speeds in entries.items():
+                states.setdefault(key, {"aircraft": {}})["aircraft"][path["aircraft"]] = speeds
+            keys[name] = list(entries)
+        return replace(self, paths=dict(paths), path_keys=keys, path_states=states)
 
     def rotor(self, aircraft: str, rotor: str) -> dict:
         return next(r for r in self.aircraft[aircraft]["rotors"] if r["name"] == rotor)
@@ -675,7 +712,10 @@ class Campaign:
 
         Outside the BVI segments only "base"; in a BVI segment "bvi", preceded by "base" where the
         comparison without BVI is asked for (``models.without_bvi_segments``, default every BVI segment).
+        A path state (:meth:`with_paths`) radiates "bvi" where ``models.bvi`` is on, else "base".
         """
+        if segment in self.path_states:  # a path state: the BVI loads wherever they are computed, no comparison
+            return ["bvi"] if self.config["models"]["bvi"] else ["base"]
         bvi = self.bvi_segments()
         if segment not in bvi:
             return ["base"]

@@ -152,7 +152,12 @@ def _footprint(case, obsset):
             "atmosphere": case.settings["atmosphere"], "absorption": case.settings["models"]["absorption"]}
 
 
-PARAMS = {"trim": _trim, "path": _path, "loads": _loads, "wake": _wake, "observers": _observers, "acoustics": _acoustics,
+def _path_footprint(case, obsset):
+    return {"ground": case.settings["footprint"]["ground"], "atmosphere": case.settings["atmosphere"],
+            "absorption": case.settings["models"]["absorption"]}
+
+
+PARAMS = {"trim": _trim, "path": _path, "path_footprint": _path_footprint, "loads": _loads, "wake": _wake, "observers": _observers, "acoustics": _acoustics,
           "wopwop_export": _acoustics, "hsi": _hsi, "metrics": _metrics, "tones": _tones, "source_hemisphere": _source_hemisphere, "certification": _certification, "footprint": _footprint}
 
 

@@ -100,6 +100,15 @@ def ground_options(ap: argparse.ArgumentParser) -> None:
         option(ap, flag, f"footprint.ground.{field}", dest=f"ground_{field}")
 
 
+def propagation_options(ap: argparse.ArgumentParser) -> None:
+    """The options of a propagation to the ground: the ground (:func:`ground_options`), the atmosphere's ΔT and
+    humidity, ``--no-absorption``."""
+    ground_options(ap)
+    option(ap, "--isa-delta-k", "atmosphere.isa_delta_K")
+    option(ap, "--relative-humidity-pct", "atmosphere.relative_humidity_pct")
+    ap.add_argument("--no-absorption", action="store_true", help="skip ISO 9613-1 air absorption")
+
+
 # the formats an output file option may name, by suffix
 FORMATS = {".parquet": "Parquet table", ".csv": "CSV table"}
 
@@ -163,6 +172,17 @@ def plan(stage: str, ap: argparse.ArgumentParser, args: argparse.Namespace, airc
 
     config = settings(ap, args, fields)
     return stage_params(stage, CaseConfig(aircraft, config, ground_as_written=config["footprint"]["ground"], **case), obsset)
+
+
+def pairs(items, option: str) -> dict[str, str]:
+    """``NAME=VALUE`` items of ``option`` as a dict; ConfigError naming the option for an item of another form."""
+    out = {}
+    for item in items or []:
+        name, sep, value = item.partition("=")
+        if not sep or not name or not value:
+            raise ConfigError(f"{option} expects NAME=VALUE, got {item!r}")
+        out[name] = value
+    return out
 
 
 def same_path_problem(inputs: dict, outputs: dict) -> str | None:

@@ -10,18 +10,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from nps.cli import fail, ground_options, option, parser, plan, run_stage
+from nps.cli import fail, option, pairs, parser, plan, propagation_options, run_stage
 from nps.app.config import ConfigError, load_mission
-
-
-def _pairs(items, option):
-    out = {}
-    for item in items or []:
-        name, sep, value = item.partition("=")
-        if not sep or not name or not value:
-            raise ConfigError(f"{option} expects NAME=VALUE, got {item!r}")
-        out[name] = value
-    return out
 
 
 def main(argv: list[str]) -> int:
@@ -32,16 +22,13 @@ def main(argv: list[str]) -> int:
     for field in ("x_range_m", "y_range_m", "spacing_m", "height_m"):
         option(ap, f"--{field.replace('_', '-')}", f"footprint.grid.{field}")
     ap.add_argument("--microphone", nargs="*", metavar="NAME=X,Y,Z", help="named microphones (m, mission frame)")
-    ground_options(ap)
-    option(ap, "--isa-delta-k", "atmosphere.isa_delta_K")
-    option(ap, "--relative-humidity-pct", "atmosphere.relative_humidity_pct")
-    ap.add_argument("--no-absorption", action="store_true", help="skip ISO 9613-1 air absorption")
+    propagation_options(ap)
     ap.add_argument("--out-dir", required=True, help="directory of the footprint artifacts")
     args = ap.parse_args(argv)
     try:
         mission = load_mission(args.mission)
-        hemis = {f"hemisphere_{k}": v for k, v in _pairs(args.hemisphere, "--hemisphere").items()}
-        mics = {k: [float(x) for x in v.split(",")] for k, v in _pairs(args.microphone, "--microphone").items()}
+        hemis = {f"hemisphere_{k}": v for k, v in pairs(args.hemisphere, "--hemisphere").items()}
+        mics = {k: [float(x) for x in v.split(",")] for k, v in pairs(args.microphone, "--microphone").items()}
         params = plan("footprint", ap, args, {}, {"footprint.microphones": mics, "models.absorption": not args.no_absorption},
                       mission=mission)
     except (ConfigError, ValueError) as error:

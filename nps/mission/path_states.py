@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from nps.core.atmosphere import AtmosphereState
-from nps.mission.paths import PathHistory
+from nps.mission.paths import PathHistory, flight_path_history, path_spec
 from nps.rotor.trim import G0_M_S2, FlightCondition
 
 # a sample within this many lattice units of its state's point takes that state alone (rounding of the scaling)
@@ -154,3 +154,39 @@ def _round(value):
     if isinstance(value, (list, tuple)):
         return [_round(v) for v in value]
     return value
+
+
+@dataclass(frozen=True)
+class PathPlan:
+    """A path planned for an aircraft: ``legs`` and ``history`` (nps.mission.paths.flight_path_history at the
+    time step), the samples' state ``coordinates`` (:func:`state_coordinates`), the covering ``states``
+    (:func:`choose_states`), and per state index its canonical ``flights`` ((FlightCondition, rotor-speed
+    fraction), :func:`state_flight`) and ``keys`` (:func:`state_key`; states of equal trim input share a key)."""
+
+    legs: tuple
+    history: PathHistory
+    coordinates: np.ndarray
+    states: PathStates
+    flights: tuple
+    keys: tuple[str, ...]
+
+    def speeds(self, rotors: list[str]) -> dict[str, dict]:
+        """State key → the state's mission-segment speeds entry (:func:`state_speeds`), in order of first visit."""
+        entries = {}
+        for key, (flight, fraction) in zip(self.keys, self.flights):
+            entries.setdefault(key, state_speeds(flight, fraction, rotors))
+        return entries
+
+
+def plan_path(aircraft: dict, path_config: dict, settings: dict, atmosphere: AtmosphereState) -> PathPlan:
+    """The :class:`PathPlan` of validated ``path_config`` flown by validated ``aircraft`` with the campaign's
+    ``paths`` settings (dt_s, state_tolerances) in ``atmosphere`` (the states' trim atmosphere); pure and cheap
+    (no trim): the workflow plans every path's states before any job."""
+    reference = aircraft["rotors"][0]
+    tip_speed = reference["omega_rad_s"] * reference["radius_m"]
+    legs, history = flight_path_history(path_spec(path_config), float(settings["dt_s"]))
+    coordinates = state_coordinates(history, tip_speed)
+    states = choose_states(coordinates, StateTolerances(**settings["state_tolerances"]))
+    flights = tuple(state_flight(values, tip_speed, atmosphere) for values in states.values)
+    return PathPlan(tuple(legs), history, coordinates, states, flights,
+                    tuple(state_key(flight, fraction) for flight, fraction in flights))

@@ -22,31 +22,37 @@ from nps.mission.footprint import CONTOUR_LEVELS_DB  # noqa: E402
 from nps.plots import save_figure  # noqa: E402
 
 
-def footprint_figure(grid: pd.DataFrame, knots_m: np.ndarray, segments, metric: str, title: str,
-                     path: str | os.PathLike, levels_db=CONTOUR_LEVELS_DB, segment_names=None):
-    """``grid``: footprint grid table (x_m, y_m, ``metric``); ``knots_m`` (n_leg + 1, 3) path knots
-    (E frame); ``segments``: segment id of each leg; ``segment_names``: optional segment id → mission name,
-    written under each leg's id in the altitude profile."""
+def contour_map(fig, ax, grid: pd.DataFrame, metric: str, levels_db, cmap: str) -> None:
+    """A ground metric (``metric`` column of ``grid``: x_m, y_m, dB) on ``ax`` in km: filled 5-dB contours from
+    20 dB below the lowest of ``levels_db``, black lines at ``levels_db``, equal axes and the colour bar."""
     for col in ("x_m", "y_m", metric):
         if col not in grid.columns:
             raise ValueError(f"footprint grid: missing column '{col}'")
     x = np.unique(grid["x_m"].to_numpy())
     y = np.unique(grid["y_m"].to_numpy())
     values = grid.sort_values(["x_m", "y_m"])[metric].to_numpy().reshape(x.size, y.size)
+    top = float(np.ceil(values.max() / 5.0) * 5.0)
+    fill = ax.contourf(x / 1e3, y / 1e3, values.T, levels=np.arange(min(levels_db) - 20.0, top + 5.0, 5.0),
+                       cmap=cmap, extend="min")
+    lines = ax.contour(x / 1e3, y / 1e3, values.T, levels=list(levels_db), colors="k", linewidths=0.8)
+    ax.clabel(lines, fmt="%.0f", fontsize=8)
+    ax.set_ylabel("y (km, port +)")
+    ax.set_aspect("equal", adjustable="box")
+    fig.colorbar(fill, ax=ax, label=f"{'SEL' if metric.startswith('sel') else 'L_Amax'} (dB(A))")
+
+
+def footprint_figure(grid: pd.DataFrame, knots_m: np.ndarray, segments, metric: str, title: str,
+                     path: str | os.PathLike, levels_db=CONTOUR_LEVELS_DB, segment_names=None):
+    """``grid``: footprint grid table (x_m, y_m, ``metric``); ``knots_m`` (n_leg + 1, 3) path knots
+    (E frame); ``segments``: segment id of each leg; ``segment_names``: optional segment id → mission name,
+    written under each leg's id in the altitude profile."""
     knots = np.asarray(knots_m, float)
     fig, (ax, axz) = plt.subplots(2, 1, figsize=(9, 7.5), sharex=True, constrained_layout=True,
                                   gridspec_kw={"height_ratios": [3, 1]})
-    top = float(np.ceil(values.max() / 5.0) * 5.0)
-    fill = ax.contourf(x / 1e3, y / 1e3, values.T, levels=np.arange(min(levels_db) - 20.0, top + 5.0, 5.0),
-                       cmap="viridis", extend="min")
-    lines = ax.contour(x / 1e3, y / 1e3, values.T, levels=list(levels_db), colors="k", linewidths=0.8)
-    ax.clabel(lines, fmt="%.0f", fontsize=8)
+    contour_map(fig, ax, grid, metric, levels_db, "viridis")
     ax.plot(knots[:, 0] / 1e3, knots[:, 1] / 1e3, "w-", lw=1.5, label="ground track")
-    ax.set_ylabel("y (km, port +)")
-    ax.set_aspect("equal", adjustable="box")
     ax.legend(loc="upper right", fontsize=8)
     ax.set_title(title)
-    fig.colorbar(fill, ax=ax, label=f"{'SEL' if metric.startswith('sel') else 'L_Amax'} (dB(A))")
     axz.plot(knots[:, 0] / 1e3, knots[:, 2], "k-")
     names = dict(segment_names or {})
     for k, seg in enumerate(segments):

@@ -21,9 +21,7 @@ import pandas as pd
 from nps.app import validity
 from nps.app.io import write_table
 from nps.core.atmosphere import isa
-from nps.mission.path_states import (COORDINATES, StateTolerances, choose_states, state_coordinates, state_flight, state_key,
-                                     state_speeds)
-from nps.mission.paths import flight_path_history, path_spec
+from nps.mission.path_states import COORDINATES, plan_path, state_speeds
 from nps.stages.trim import trimmed
 
 HISTORY_COLUMNS = (
@@ -56,30 +54,25 @@ def history_table(history, coordinates: np.ndarray, states, keys: list[str]) -> 
 def run(inputs: dict, outputs: dict, params: dict) -> str:
     aircraft, settings, atm = params["aircraft_config"], params["paths"], params["atmosphere"]
     atmosphere = isa(atm["altitude_m"], atm["isa_delta_K"], atm["relative_humidity_pct"])
-    reference = aircraft["rotors"][0]
-    tip_speed = reference["omega_rad_s"] * reference["radius_m"]
-    legs, history = flight_path_history(path_spec(params["path_config"]), float(settings["dt_s"]))
-    coordinates = state_coordinates(history, tip_speed)
-    states = choose_states(coordinates, StateTolerances(**settings["state_tolerances"]))
-    where, keys, tables, findings = str(outputs["states"]), [], [], []
-    for index, values in enumerate(states.values):
-        flight, fraction = state_flight(values, tip_speed, atmosphere)
-        keys.append(state_key(flight, fraction))
-        if keys[-1] in keys[:-1]:  # the same trim input (at μ = 0 neither γ_e nor a_x enters): one state
+    plan = plan_path(aircraft, params["path_config"], settings, atmosphere)
+    where, tables, findings = str(outputs["states"]), [], []
+    rotors = [r["name"] for r in aircraft["rotors"]]
+    for index, (values, (flight, fraction), key) in enumerate(zip(plan.states.values, plan.flights, plan.keys)):
+        if key in plan.keys[:index]:  # the same trim input (at μ = 0 neither γ_e nor a_x enters): one state
             continue
-        trim, found = trimmed(aircraft, state_speeds(flight, fraction, [r["name"] for r in aircraft["rotors"]]), atmosphere,
-                              params, where)
+        trim, found = trimmed(aircraft, state_speeds(flight, fraction, rotors), atmosphere, params, where)
         findings += found
         n_v = np.cos(np.radians(values[1])) + values[2]
-        fields = {"state": keys[-1], "state_index": np.int32(index), **dict(zip(COORDINATES, values)),
+        fields = {"state": key, "state_index": np.int32(index), **dict(zip(COORDINATES, values)),
                   "load_factor": float(np.hypot(n_v, values[3])), "bank_rad": float(np.arctan2(values[3], n_v)),
                   "forward_speed_mps": flight.forward_speed_mps, "climb_speed_mps": flight.climb_speed_mps,
                   **{f"state_acc_{c}_mps2": a for c, a in zip("xyz", flight.acceleration_mps2)}}
         tables.append(trim.assign(**fields)[[*STATE_COLUMNS, *trim.columns]])
     warnings = validity.recorded(findings, params, where)
     meta = {"aircraft": aircraft["name"], "path": params["path_config"]["name"], "paths": dict(settings), **warnings}
-    write_table(history_table(history, coordinates, states, keys), outputs["history"], stage="path", metadata=meta)
+    write_table(history_table(plan.history, plan.coordinates, plan.states, list(plan.keys)), outputs["history"],
+                stage="path", metadata=meta)
     write_table(pd.concat(tables, ignore_index=True), outputs["states"], stage="path", metadata=meta)
-    return (f"path '{params['path_config']['name']}' ({aircraft['name']}): {len(legs)} legs, "
-            f"{history.time_s[-1]:.1f} s, {len(history.time_s)} samples, {len(tables)} trim states"
+    return (f"path '{params['path_config']['name']}' ({aircraft['name']}): {len(plan.legs)} legs, "
+            f"{plan.history.time_s[-1]:.1f} s, {len(plan.history.time_s)} samples, {len(tables)} trim states"
             + validity.report(warnings))

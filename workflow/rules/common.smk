@@ -5,7 +5,7 @@ import sys
 from functools import lru_cache
 from pathlib import Path
 
-from nps.app.config import ConfigError, load_campaign, load_rig
+from nps.app.config import ConfigError, load_campaign, load_path, load_rig
 from nps.app.designs import load_study
 from nps.app.plan import CaseConfig, metrics_reads_disks, stage_params
 from nps.rig import RIG_AIRCRAFT
@@ -45,10 +45,29 @@ if RIG_AIRCRAFT in CAMPAIGN.aircraft:
     sys.stderr.write(f"NPS configuration error: aircraft name '{RIG_AIRCRAFT}' is the rigs' (results/{RIG_AIRCRAFT}/)\n")
     raise SystemExit(1)
 
+# Flight paths (config/paths/*.yaml of the campaign's aircraft, nps.mission.paths; rules in path.smk), validated
+# and planned before any job: a path's quasi-static trim states run the study's per-segment rules as segments
+# named by their keys (results/<aircraft>/<key>/, shared by every path through the same state), and its
+# products are results/paths/<path>/. Paths of aircraft outside the campaign are not planned, nor any path without
+# the `footprint` section (its source set and ground make the states' hemispheres and the propagation).
+PATHS_DIR = Path("config/paths")
+PATHS_RESULTS = f"{RESULTS}/paths"
+try:
+    _paths = {p.stem: load_path(p, config["paths"]["dt_s"]) for p in sorted(PATHS_DIR.glob("*.yaml"))}
+    if "footprint" in config:
+        CAMPAIGN = CAMPAIGN.with_paths({name: p for name, p in _paths.items() if p["aircraft"] in CAMPAIGN.aircraft})
+except ConfigError as error:
+    sys.stderr.write(f"NPS flight-path configuration error: {error}\n")
+    raise SystemExit(1)
+if "paths" in CAMPAIGN.aircraft:
+    sys.stderr.write(f"NPS configuration error: aircraft name 'paths' is the flight paths' ({PATHS_RESULTS}/)\n")
+    raise SystemExit(1)
+
 
 wildcard_constraints:
     aircraft="[a-z][a-z0-9_]*",
-    segment="|".join(["seg[0-9]+", *RIGS]),
+    segment="|".join(["seg[0-9]+", *RIGS, "s[0-9a-f]{12}"]),
+    path="[a-z][a-z0-9_]*",
     rotor="[a-z][a-z0-9_]*",
     obsset="[a-z][a-z0-9_]*",
     variant="base|bvi",
@@ -366,3 +385,23 @@ def case_runtime(wildcards, attempt):
 
 def study_targets(name):
     return [f"{study_dir(name)}/trade.parquet"]
+
+
+# used by path.smk
+def path_job(stage):
+    """Rule param ``job`` of a path's stage: the stage's params planned for the path's aircraft
+    (nps.app.plan.stage_params) with the aircraft's name and the validated path."""
+    def job(wildcards):
+        path = CAMPAIGN.paths[wildcards.path]
+        case = CaseConfig.from_campaign(CAMPAIGN, path["aircraft"])
+        return {**stage_params(stage, case), "aircraft": path["aircraft"], "path_config": path}
+    return job
+
+
+def path_footprint_inputs(wildcards):
+    """The path's history and the source hemisphere of every trim state it passes."""
+    aircraft = CAMPAIGN.paths[wildcards.path]["aircraft"]
+    inputs = {"history": f"{PATHS_RESULTS}/{wildcards.path}/path_history.parquet"}
+    inputs.update({f"hemisphere_{key}": f"{RESULTS}/{aircraft}/{key}/source_hemisphere.parquet"
+                   for key in CAMPAIGN.path_keys[wildcards.path]})
+    return inputs
