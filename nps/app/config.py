@@ -295,10 +295,13 @@ def load_aircraft(path: str | Path, document: Any = None) -> dict:
     """Read and validate one aircraft file, with its own cross checks; schema defaults filled. ``document``:
     the file's content as read (e.g. a design-study variant of it), validated as if read from ``path``."""
     document = read_yaml(path) if document is None else copy.deepcopy(document)
+    from nps.rotor.control import default_mode
+
     data = fill_defaults(validate(document, "aircraft", path), load_schema("aircraft"))
     problems = []
     names = [rotor["name"] for rotor in data["rotors"]]
     for index, rotor in enumerate(data["rotors"]):
+        rotor.setdefault("control", default_mode(rotor))
         where = f"rotors[{index}]"
         if names.count(rotor["name"]) > 1:
             problems.append((f"{where}.name", f"expected a unique rotor name, '{rotor['name']}' repeats"))
@@ -537,10 +540,12 @@ def _rotor_sections(rotor: dict, where: str, base: Path) -> list[tuple[str, str]
             for key in ("extrapolation", "reynolds"):
                 if key in foil and not (key == "extrapolation" and foil[key] == extrapolation):
                     problems.append((f"{where}.{field}.{key}", "applies to a table only; expected a table"))
+    from nps.rotor.control import TRIMMED_PITCH
+
     mode = rotor["control"]
-    if mode == "collective" and "pitch_deg" in rotor:
-        problems.append((f"{where}.pitch_deg", "expected no pitch_deg with control 'collective' (the trim sets the pitch)"))
-    if mode != "collective" and "pitch_deg" not in rotor:
+    if mode in TRIMMED_PITCH and "pitch_deg" in rotor:
+        problems.append((f"{where}.pitch_deg", f"expected no pitch_deg with control '{mode}' (the trim sets the pitch)"))
+    if mode not in TRIMMED_PITCH and "pitch_deg" not in rotor:
         problems.append((f"{where}.pitch_deg", f"required with control '{mode}'"))
     for field, holder in holders + [("blade", rotor.get("blade", {}))]:
         if "table" in holder:
@@ -833,11 +838,14 @@ def rig_disk_problems(rotors: list[dict]) -> list[tuple[str, str]]:
 def _rig_rotor(ref: dict, base: Path, prepare) -> dict:
     """The validated rotor of a rig's rotor reference (``file``, or ``aircraft`` and ``name``; paths relative to
     ``base``), made the stages' rotor by ``prepare`` (the rig's speed, control, placement)."""
+    from nps.rotor.control import default_mode
+
     if "file" in ref:
         rotor_file = base / ref["file"]
         rotor_schema = {"$defs": load_schema("aircraft")["$defs"], "$ref": "#/$defs/rotor"}
         rotor = prepare(read_yaml(rotor_file))
         rotor = fill_defaults(validate(rotor, rotor_schema, rotor_file), rotor_schema)
+        rotor.setdefault("control", default_mode(rotor))
     else:
         rotor_file = base / ref["aircraft"]
         rotor = prepare(aircraft_rotor(load_aircraft(rotor_file), ref["name"], rotor_file))
@@ -907,6 +915,10 @@ def _rig_rotors(data: dict, path: Path) -> tuple[list[dict], list[dict]]:
             problems.append((f"{where}.control", "'rpm' is not available for a rotor coupled to others through the free "
                              "wake (wake.model free): its speed is not re-trimmed in their wakes; use collective (a "
                              "thrust target) or fixed (a pitch)"))
+        if free and rotor["control"] == "collective_only":
+            problems.append((f"{where}.control", "'collective_only' is not available for a rotor coupled to others "
+                             "through the free wake (wake.model free): the re-trim in their wakes sets cyclic pitch; "
+                             "use fixed (a pitch), or collective_only with a prescribed wake"))
         rotors.append(rotor)
         conditions.append(condition)
     _raise(path, problems)

@@ -3,7 +3,8 @@
 The rotor comes from a rotor YAML (``--rotor-file``, one ``rotors[]`` entry of an aircraft file) or an
 aircraft file (``--aircraft`` with ``--rotor``); or give a whole rig with ``--rig``
 (config/rigs/NAME.yaml). The condition: rotor speed, control mode (``fixed``: given pitch and speed;
-``rpm``: pitch given, speed trimmed to ``--thrust-n``; ``collective``: pitch trimmed to ``--thrust-n``),
+``rpm``: pitch given, speed trimmed to ``--thrust-n``; ``collective``: pitch trimmed to ``--thrust-n``;
+``collective_only``: collective alone, no cyclic, teeter free),
 shaft angle (positive aft) and wind-tunnel speed (0: hover), atmosphere given directly. Microphones in
 the hub-fixed test frame T (x_T downstream, z_T up, y_T = z_T × x_T; docs/reference/rigs.md): ``--mic X Y Z``
 (repeatable), ``--mic-file`` (CSV x_m,y_m,z_m or YAML), ``--arc-radius-m`` with ``--arc-angles-deg``.
@@ -74,9 +75,9 @@ def main(argv: list[str]) -> int:
     speed = ap.add_mutually_exclusive_group()
     speed.add_argument("--rpm", type=float, help="rotor speed (rev/min)")
     speed.add_argument("--omega-rad-s", type=float, help="rotor speed (rad/s)")
-    ap.add_argument("--control", choices=["collective", "rpm", "fixed"], help="default: the rotor's")
+    ap.add_argument("--control", choices=["collective", "collective_only", "rpm", "fixed"], help="default: the rotor's")
     ap.add_argument("--pitch-deg", type=float, help="blade pitch at 75 %% radius (control rpm, fixed)")
-    ap.add_argument("--thrust-n", type=float, help="thrust target (control collective, rpm)")
+    ap.add_argument("--thrust-n", type=float, help="thrust target (control collective, collective_only, rpm)")
     ap.add_argument("--no-flapping", action="store_true", help="rigid blades")
     option(ap, "--shaft-angle-deg", "condition.shaft_angle_deg", schema="rig")
     option(ap, "--speed-mps", "condition.tunnel_speed_mps", schema="rig")
