@@ -154,6 +154,17 @@ def control_conflicts(mode: str, condition: Mapping, where: str = "condition") -
     return problems
 
 
+def station_params(rig: Mapping) -> dict:
+    """``stations`` and ``rotors`` params of a loaded rig's station_loads jobs (:mod:`nps.stages.station_loads`):
+    the rig's ``stations_r_over_R`` list and every rotor when all rotors use it, else ``{rotor: stations}`` of the
+    rotors that have stations (``rotor_stations``, :func:`nps.app.config.rotor_stations`), in rig order."""
+    stations, names = rig["rotor_stations"], [r["name"] for r in rig["rotor_configs"]]
+    common = rig.get("stations_r_over_R")
+    if common is not None and list(stations) == names and all(v == [float(x) for x in common] for v in stations.values()):
+        return {"stations": common, "rotors": names}
+    return {"stations": stations, "rotors": list(stations)}
+
+
 def read_microphone_file(path: str | Path) -> np.ndarray:
     """Microphone positions (n, 3) in T from a CSV (header x_m, y_m, z_m) or YAML (list of
     mappings with x_m, y_m, z_m). Raises ObserverError naming the file, row and field."""

@@ -8,6 +8,7 @@ trim artifact (``trim.parquet``, one row per rotor). Frames and signs: docs/refe
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 from typing import Mapping
 
@@ -19,6 +20,14 @@ from nps.rotor.blade import BladeError, BladeTable, blade_from_config
 ARTICULATED, TEETERING, HINGELESS = "articulated", "teetering", "hingeless"
 HUBS = (ARTICULATED, TEETERING, HINGELESS)
 MAX_FLAP_FREQUENCY_PER_REV = 3.0  # ν_β of a rigid flapping blade: hingeless rotors lie near 1.05–1.2/rev
+
+
+def without_rotor_label(where: str, message: str) -> str:
+    """``message`` without its leading ``rotor '<name>': `` when ``where`` (the place a caller puts before it)
+    already ends with that rotor's name (``rotor 'main'``, ``rotors[0] 'main'``): each message names a rotor once."""
+    label = re.match(r"rotor '([^']*)': ", message)
+    named = label and re.search(rf"(rotor|\]) '{re.escape(label.group(1))}'$", where)
+    return message[label.end():] if named else message
 
 
 class HubError(BladeError):
