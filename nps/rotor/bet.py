@@ -495,7 +495,7 @@ class _StateSolver:
     def __init__(self, disk: _Disk, x0: np.ndarray, flapping: bool = True):
         self.disk, self.x, self.jac = disk, np.array(x0, dtype=float), None
         self.active = np.arange(4) if flapping and disk.prescribed_flap is None else np.arange(1)
-        if disk.g.hub == TEETERING:  # no coning degree of freedom: β0 is the precone
+        if disk.g.hub == TEETERING or self.active.size == 1:  # no coning freedom (teeter, rigid blades): β0 = precone
             self.x[1] = disk.g.precone_rad
             if self.active.size == 4:
                 self.active = np.array([0, 2, 3])

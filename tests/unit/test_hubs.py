@@ -204,6 +204,13 @@ def test_precone_equal_to_the_natural_coning_leaves_no_root_moment():
     assert flat.flapping.beta0_rad == pytest.approx(natural / 1.12**2, abs=1e-9)
 
 
+def test_rigid_hingeless_blades_are_held_at_their_precone():
+    """flapping: false holds a hingeless blade at its unloaded position β = β_p (an articulated one at 0)."""
+    result = bet.rotor_loads(rotor("hingeless", nu=1.12, precone_deg=2.5), hover(), bet.DiskGrid(24, 12),
+                             bet.Controls(math.radians(8.0)), flapping=False)
+    assert np.all(result.disk["beta_rad"] == math.radians(2.5)) and result.flapping.beta0_rad == math.radians(2.5)
+
+
 def test_hingeless_rotor_trims_to_hub_moments_through_its_spring():
     """Four blades, e = 0, ν_β 1.12, μ 0.25: trimmed to T and to hub moments (B/2) I_βΩ²(ν² − 1) β1 (no offset:
     the spring alone transmits them); an articulated e = 0 rotor refuses moment targets."""
