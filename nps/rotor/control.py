@@ -113,9 +113,9 @@ DENSITY_RANGE_KG_M3 = (0.05, 10.0)  # air at altitude to heavy-gas tunnels (nps.
 
 
 def likely_inputs(geometry: RotorGeometry, op: OperatingPoint) -> str:
-    """The inputs a failed rotor solution most likely comes from, for its message: rotor speed (with the tip
-    speed), chord, radius and density, each marked where it lies outside its usual range (a speed in rpm,
-    a chord in mm), and the settings to change."""
+    """The inputs a failed rotor solution most likely comes from, for its message (which names the rotor
+    already): rotor speed (with the tip speed), chord, radius and density, each marked where it lies outside
+    its usual range (a speed in rpm, a chord in mm), and the settings to change."""
     tip_speed, chord_ratio = op.omega_rad_s * geometry.radius_m, geometry.chord_m / geometry.radius_m
     notes = []
     if not TIP_SPEED_RANGE_MPS[0] <= tip_speed <= TIP_SPEED_RANGE_MPS[1]:
@@ -129,7 +129,7 @@ def likely_inputs(geometry: RotorGeometry, op: OperatingPoint) -> str:
         notes.append(f"density {op.density_kg_m3:.4g} kg/m³ is outside {DENSITY_RANGE_KG_M3[0]:g}-"
                      f"{DENSITY_RANGE_KG_M3[1]:g} kg/m³ (g/m³?)")
     found = "; ".join(notes) if notes else "each within its usual range: check the thrust target and the pitch"
-    return (f"inputs of rotor '{geometry.name}': omega_rad_s {op.omega_rad_s:.6g} rad/s, chord {geometry.chord_m:.4g} m, "
+    return (f"its inputs: omega_rad_s {op.omega_rad_s:.6g} rad/s, chord {geometry.chord_m:.4g} m, "
             f"radius {geometry.radius_m:.4g} m, density {op.density_kg_m3:.4g} kg/m³, thrust target {op.thrust_N:.6g} N: "
             f"{found}; settings to change: the rotor's omega_rad_s, chord_m, radius_m, pitch_deg or control, the "
             f"condition's atmosphere or thrust_N")

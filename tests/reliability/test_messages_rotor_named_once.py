@@ -86,3 +86,20 @@ def test_validity_refusal_of_a_rotors_entry_names_the_rotor_once(tmp_path):
     assert f"{path}: rig '{RIG}': rotors[0] 'main': advance ratio mu = 0.665" in message, message
     _named_once(message)
     assert not (tmp_path / "trim.parquet").exists()
+
+
+def test_a_failed_rotor_solution_names_the_rotor_once():
+    """A thrust the rotor cannot give (collective_only, 50 kN on a 0.3 m tail rotor): one TrimError naming the rotor
+    once, then its likely inputs."""
+    from nps.rotor.bet import DiskGrid, TrimError
+    from nps.rotor.control import RotorControl, solve_rotor
+    from nps.rotor.geometry import OperatingPoint, RotorGeometry
+
+    g = RotorGeometry(name="tail", n_blades=2, radius_m=0.3, chord_m=0.04, root_cutout_m=0.06, twist_rad=0.0,
+                      thickness_ratio=0.12, lock_number=3.0, hub="teetering")
+    with pytest.raises(TrimError) as error:
+        solve_rotor(g, OperatingPoint(500.0, 0.1, 0.0, 0.0, 1.225, 340.0, 5.0e4), DiskGrid(36, 10),
+                    RotorControl("collective_only"))
+    message = str(error.value)
+    assert message.startswith("rotor 'tail': ") and "; its inputs: omega_rad_s 500 rad/s" in message, message
+    _named_once(message, "tail")
