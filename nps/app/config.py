@@ -294,14 +294,17 @@ def yaml_error_text(exc: yaml.YAMLError) -> str:
 def load_aircraft(path: str | Path, document: Any = None) -> dict:
     """Read and validate one aircraft file, with its own cross checks; schema defaults filled. ``document``:
     the file's content as read (e.g. a design-study variant of it), validated as if read from ``path``."""
-    document = read_yaml(path) if document is None else copy.deepcopy(document)
     from nps.rotor.control import default_mode
 
+    document = read_yaml(path) if document is None else copy.deepcopy(document)
+    rotors = document.get("rotors") if isinstance(document, dict) else None
+    given = [isinstance(r, dict) and "control" in r for r in rotors] if isinstance(rotors, list) else []
     data = fill_defaults(validate(document, "aircraft", path), load_schema("aircraft"))
     problems = []
     names = [rotor["name"] for rotor in data["rotors"]]
     for index, rotor in enumerate(data["rotors"]):
-        rotor.setdefault("control", default_mode(rotor))
+        if not given[index]:  # the schema's default, collective, unless the rotor is a teetering tail rotor
+            rotor["control"] = default_mode(rotor)
         where = f"rotors[{index}]"
         if names.count(rotor["name"]) > 1:
             problems.append((f"{where}.name", f"expected a unique rotor name, '{rotor['name']}' repeats"))
@@ -844,8 +847,10 @@ def _rig_rotor(ref: dict, base: Path, prepare) -> dict:
         rotor_file = base / ref["file"]
         rotor_schema = {"$defs": load_schema("aircraft")["$defs"], "$ref": "#/$defs/rotor"}
         rotor = prepare(read_yaml(rotor_file))
+        given = isinstance(rotor, dict) and "control" in rotor
         rotor = fill_defaults(validate(rotor, rotor_schema, rotor_file), rotor_schema)
-        rotor.setdefault("control", default_mode(rotor))
+        if not given:  # as for an aircraft's rotors (load_aircraft)
+            rotor["control"] = default_mode(rotor)
     else:
         rotor_file = base / ref["aircraft"]
         rotor = prepare(aircraft_rotor(load_aircraft(rotor_file), ref["name"], rotor_file))
