@@ -596,6 +596,48 @@ def load_mission(path: str | Path, document: Any = None) -> dict:
     return data
 
 
+# pairs of leg fields of a path of which at most one is given (nps.mission.paths)
+PATH_EXCLUSIVE = (("end_speed_mps", "acceleration_mps2"), ("height_change_m", "flight_path_deg"))
+
+
+def _path_leg_problems(leg: dict, where: str) -> list[tuple[str, str]]:
+    """A path leg's form: one of straight/turn; a straight leg's length (distance_m or duration_s); a turn's
+    radius_m or bank_deg; at most one field of each :data:`PATH_EXCLUSIVE` pair."""
+    kinds = [kind for kind in ("straight", "turn") if kind in leg]
+    if len(kinds) != 1:
+        return [(where, f"expected exactly one of 'straight' and 'turn', got {kinds or 'neither'}")]
+    body, problems = leg[kinds[0]], []
+    pair = ("distance_m", "duration_s") if kinds[0] == "straight" else ("radius_m", "bank_deg")
+    if (pair[0] in body) == (pair[1] in body):
+        problems.append((f"{where}.{kinds[0]}", f"expected exactly one of '{pair[0]}' and '{pair[1]}'"))
+    for first, second in PATH_EXCLUSIVE:
+        if first in leg and second in leg:
+            problems.append((f"{where}.{second}", f"expected at most one of '{first}' and '{second}', got both"))
+    return problems
+
+
+def load_path(path: str | Path, dt_s: float | None = None, document: Any = None) -> dict:
+    """Read and validate one flight-path file (``nps/app/schemas/path.schema.yaml``), defaults filled, with the
+    legs' form and the limits of what the aircraft can fly checked (:func:`nps.mission.paths.flight_path_history`,
+    errors ``<file>: legs[i].<field>: ...``). ``dt_s``: also check that the history has at least two samples."""
+    from nps.mission.paths import PathError, flight_path_history, path_spec
+
+    document = read_yaml(path) if document is None else copy.deepcopy(document)
+    data = fill_defaults(validate(document, "path", path), load_schema("path"))
+    problems = [problem for index, leg in enumerate(data["legs"]) for problem in _path_leg_problems(leg, f"legs[{index}]")]
+    if Path(path).stem != data["name"]:
+        problems.append(("name", f"expected the file stem '{Path(path).stem}', got '{data['name']}'"))
+    _raise(path, problems)
+    try:
+        legs, history = flight_path_history(path_spec(data), dt_s or 1.0)
+    except PathError as error:
+        raise ConfigError(f"{path}: {error.field}: {error.expected}") from None
+    if dt_s is not None and len(history.time_s) < 2:
+        raise ConfigError(f"{path}: legs: the path lasts {legs[-1].t0_s + legs[-1].duration_s:.4g} s: expected at least "
+                          f"one time step paths.dt_s = {dt_s} s")
+    return data
+
+
 @dataclass(frozen=True)
 class Campaign:
     """A validated campaign: the config (schema defaults filled), its aircraft and mission (filled), the

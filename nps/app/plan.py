@@ -66,6 +66,12 @@ def _trim(case, obsset):
             "allow_outside_validity": _allow(case), "n_psi": resolution["n_psi"], "n_r": resolution["n_r"]}
 
 
+def _path(case, obsset):
+    resolution = case.settings["resolution"]
+    return {"aircraft_config": case.aircraft, "paths": case.settings["paths"], "atmosphere": case.settings["atmosphere"],
+            "allow_outside_validity": _allow(case), "n_psi": resolution["n_psi"], "n_r": resolution["n_r"]}
+
+
 def _loads(case, obsset):
     resolution = case.settings["resolution"]
     return {"rotors": case.rotors, "n_psi": resolution["n_psi"], "n_r": resolution["n_r"],
@@ -146,7 +152,7 @@ def _footprint(case, obsset):
             "atmosphere": case.settings["atmosphere"], "absorption": case.settings["models"]["absorption"]}
 
 
-PARAMS = {"trim": _trim, "loads": _loads, "wake": _wake, "observers": _observers, "acoustics": _acoustics,
+PARAMS = {"trim": _trim, "path": _path, "loads": _loads, "wake": _wake, "observers": _observers, "acoustics": _acoustics,
           "wopwop_export": _acoustics, "hsi": _hsi, "metrics": _metrics, "tones": _tones, "source_hemisphere": _source_hemisphere, "certification": _certification, "footprint": _footprint}
 
 

@@ -79,6 +79,17 @@ def option(ap: argparse.ArgumentParser, flag: str, field: str, *, schema: str = 
     return action
 
 
+def trim_options(ap: argparse.ArgumentParser) -> None:
+    """The options of an aircraft trim (commands trim and path): atmosphere and the disk resolution of the loads
+    that solve rpm-controlled rotor speeds."""
+    option(ap, "--altitude-m", "atmosphere.altitude_m")
+    option(ap, "--isa-delta-k", "atmosphere.isa_delta_K")
+    option(ap, "--relative-humidity-pct", "atmosphere.relative_humidity_pct")
+    option(ap, "--n-psi", "resolution.n_psi",
+           help="azimuth stations of the loads solving rpm-controlled rotor speeds (default %(default)s)")
+    option(ap, "--n-r", "resolution.n_r", help="radial stations (default %(default)s)")
+
+
 # config ``footprint.ground`` field -> option of the footprint and certification commands
 GROUND_OPTIONS = {"model": "--ground", "flow_resistivity_kPa_s_m2": "--flow-resistivity", "coherent": "--coherent"}
 

@@ -3,7 +3,7 @@ params the workflow plans for it (nps.app.plan)."""
 
 from __future__ import annotations
 
-from nps.cli import fail, option, output_file, parser, plan, run_stage
+from nps.cli import fail, output_file, parser, plan, run_stage, trim_options
 from nps.app.config import ConfigError, load_aircraft, load_mission
 
 
@@ -12,12 +12,7 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--aircraft", required=True, help="aircraft YAML (config/aircraft/NAME.yaml)")
     ap.add_argument("--mission", required=True, help="mission YAML (config/missions/NAME.yaml)")
     ap.add_argument("--segment", required=True, help="segment id, e.g. seg3")
-    option(ap, "--altitude-m", "atmosphere.altitude_m")
-    option(ap, "--isa-delta-k", "atmosphere.isa_delta_K")
-    option(ap, "--relative-humidity-pct", "atmosphere.relative_humidity_pct")
-    option(ap, "--n-psi", "resolution.n_psi",
-           help="azimuth stations of the loads solving rpm-controlled rotor speeds (default %(default)s)")
-    option(ap, "--n-r", "resolution.n_r", help="radial stations (default %(default)s)")
+    trim_options(ap)
     ap.add_argument("--out", required=True, type=output_file(".parquet"), help="output Parquet (one row per rotor)")
     args = ap.parse_args(argv)
     try:

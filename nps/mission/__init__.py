@@ -3,6 +3,8 @@
 Layer 3 (beside :mod:`nps.rig`): imports :mod:`nps.noise`, :mod:`nps.rotor` and :mod:`nps.core`.
 
 - :mod:`nps.mission.trajectory`: the mission's flight profile and the Chapter 8 reference procedures.
+- :mod:`nps.mission.paths`: 3-D flight paths and their time history; :mod:`nps.mission.path_states`: the
+  quasi-static trim states that cover a path.
 - :mod:`nps.mission.source_hemisphere`: per-observer band levels at the reference radius.
 - :mod:`nps.mission.propagation`: hemispheres along a trajectory to fixed receivers (RNM method).
 - :mod:`nps.mission.footprint`: L_A(t), L_Amax, SEL and contour areas; :mod:`nps.mission.certification`: EPNL.

@@ -114,7 +114,7 @@ class Footprint:
     microphones: pd.DataFrame   # one row per microphone
     histories: pd.DataFrame     # microphone × record: time_s, la_db, pnlt_db, leg (emitting leg, −1 none)
     areas: pd.DataFrame         # metric × level: area_km2, open (reaches the grid edge: a lower bound)
-    segments: list[str]         # mission segment id of each leg (columns leg{k}_* of ``grid``)
+    segments: list[str]         # label of each leg: its mission segment id, or a path leg (columns leg{k}_* of ``grid``)
 
 
 def mission_trajectory(path: FlightPath, hemispheres: Mapping[str, Hemisphere], delta_t_k: float,
@@ -138,15 +138,32 @@ def mission_footprint(path: FlightPath, hemispheres: Mapping[str, Hemisphere], g
     """Fly ``path`` (legs in order) with the segments' ``hemispheres`` over ``grid`` and the named
     ``microphones`` (name → (x, y, z) in E); see the module doc for the metrics."""
     trajectory, hemis = mission_trajectory(path, hemispheres, delta_t_k, relative_humidity_pct, absorption)
+    return trajectory_footprint(trajectory, hemis, np.arange(len(path.legs)), path.segments, grid, microphones,
+                                speed_of_sound_mps, ground, levels_db)
+
+
+def trajectory_footprint(trajectory: Trajectory, hemispheres: Sequence[Hemisphere], leg_of_segment: np.ndarray,
+                         leg_labels: Sequence[str], grid: GroundGrid, microphones: Mapping[str, Sequence[float]],
+                         speed_of_sound_mps: float, ground: Ground = Ground(),
+                         levels_db=CONTOUR_LEVELS_DB) -> Footprint:
+    """Footprint of ``trajectory`` radiating ``hemispheres`` over ``grid`` and the named ``microphones``, the
+    per-leg metrics (columns leg{k}_*) over the records emitted while trajectory segment s flew leg
+    ``leg_of_segment[s]`` (legs 0 … len(leg_labels) − 1, labelled by ``leg_labels``); module doc."""
+    leg_of_segment = np.asarray(leg_of_segment, dtype=np.int64)
+    n_leg = len(leg_labels)
+    if leg_of_segment.shape != np.shape(trajectory.hemisphere_index) or np.any(leg_of_segment < 0) or \
+            np.any(leg_of_segment >= n_leg):
+        raise FootprintError(f"leg_of_segment: expected one leg in 0..{n_leg - 1} per trajectory segment")
+    leg_of = np.append(leg_of_segment, -1)  # index −1 (nothing received) stays −1
+
     points = grid.points()
     mic_names = list(microphones)
     mics = np.array([microphones[m] for m in mic_names], float).reshape(-1, 3)
     times = reception_times(trajectory, np.vstack([points, mics]), speed_of_sound_mps, RECORD_S)
-    n_leg = len(path.legs)
     parts = []
     for start in range(0, points.shape[0], RECEIVER_CHUNK):
-        hist = propagate(hemis, trajectory, points[start:start + RECEIVER_CHUNK], times, speed_of_sound_mps, ground)
-        parts.append(exposure_metrics(hist.la_db, hist.segment, n_leg))
+        hist = propagate(hemispheres, trajectory, points[start:start + RECEIVER_CHUNK], times, speed_of_sound_mps, ground)
+        parts.append(exposure_metrics(hist.la_db, leg_of[hist.segment], n_leg))
     grid_m = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
     grid_table = pd.DataFrame({"x_m": points[:, 0], "y_m": points[:, 1], "z_m": points[:, 2],
                                "lamax_db": grid_m["lamax_db"], "sel_db": grid_m["sel_db"]})
@@ -162,13 +179,14 @@ def mission_footprint(path: FlightPath, hemispheres: Mapping[str, Hemisphere], g
     mic_table = pd.DataFrame(columns=["microphone"])
     histories = pd.DataFrame(columns=["microphone", "time_s", "la_db", "pnlt_db", "leg"])
     if mics.size:
-        hist = propagate(hemis, trajectory, mics, times, speed_of_sound_mps, ground, store_bands=True)
+        hist = propagate(hemispheres, trajectory, mics, times, speed_of_sound_mps, ground, store_bands=True)
+        leg = leg_of[hist.segment]
         table, pnlt_hist = microphone_histories(hist.bands_db, hist.band_numbers, RECORD_S)
-        expo = exposure_metrics(hist.la_db, hist.segment, n_leg)
+        expo = exposure_metrics(hist.la_db, leg, n_leg)
         table["sel_db"] = expo["sel_db"]
         for k in range(n_leg):
             # the leg's own records (rays emitted during leg k), the others at the level floor
-            leg_bands = np.where((hist.segment == k)[..., None], hist.bands_db, LEVEL_FLOOR_DB)
+            leg_bands = np.where((leg == k)[..., None], hist.bands_db, LEVEL_FLOOR_DB)
             table[f"leg{k}_epnl_db"] = microphone_histories(leg_bands, hist.band_numbers, RECORD_S)[0]["epnl_db"]
             table[f"leg{k}_lamax_db"] = expo["segment_lamax_db"][:, k]
             table[f"leg{k}_sel_db"] = expo["segment_sel_db"][:, k]
@@ -181,6 +199,6 @@ def mission_footprint(path: FlightPath, hemispheres: Mapping[str, Hemisphere], g
             "time_s": np.tile(times, len(mic_names)),
             "la_db": hist.la_db.ravel(),
             "pnlt_db": pnlt_hist.ravel(),
-            "leg": hist.segment.ravel().astype(np.int32),
+            "leg": leg.ravel().astype(np.int32),
         })
-    return Footprint(grid_table, mic_table, histories, areas, path.segments)
+    return Footprint(grid_table, mic_table, histories, areas, list(leg_labels))

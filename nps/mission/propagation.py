@@ -1,10 +1,10 @@
 """Propagation of source hemispheres along a flight trajectory to fixed receivers (RNM method).
 
-Frames and units. Mission frame E (m): x along the straight ground track from the trajectory's
+Frames and units. Mission frame E (m): x along the ground track's first heading from the trajectory's
 first point, y to port, z height above flat ground (z = 0 is the ground). The aircraft's level
-heading frame is E translated (heading along +x), so a hemisphere direction (map azimuth az,
-elevation el, docs/reference/conventions.md "Observer azimuth") is the unit vector
-d = (−cos az cos el, −sin az cos el, sin el) in E. Times in s, levels dB re 20 µPa, bands are the
+heading frame is E translated and turned by the heading χ about +z (χ = 0 on a straight track along +x), so a
+hemisphere direction (map azimuth az, elevation el, docs/reference/conventions.md "Observer azimuth") is the unit
+vector d = R_z(χ) (−cos az cos el, −sin az cos el, sin el) in E. Times in s, levels dB re 20 µPa, bands are the
 1/3-octave band numbers n of nps.noise.spectra (f_m = 1000·10^(n/10) Hz).
 
 Source. A :class:`Hemisphere` holds the band levels L_h(d, n) that observers moving with the
@@ -143,15 +143,25 @@ class Trajectory:
     """Continuous piecewise-linear flight path in the mission frame E.
 
     ``time_s`` (n_seg + 1,) strictly increasing knot times; ``position_m`` (n_seg + 1, 3) knot
-    positions (y = 0: straight track along +x; z ≥ 0 height); segment k flies from knot k to
-    knot k + 1 with constant velocity, radiates hemisphere ``hemisphere_index[k]`` and absorbs
-    with ``atmospheres[k]``.
+    positions (z ≥ 0 height); segment k flies from knot k to knot k + 1 with constant velocity,
+    radiates hemisphere ``hemisphere_index[k]`` and absorbs with ``atmospheres[k]``.
+
+    Optional, for paths that turn and change state (nps.mission.path_noise): ``hemisphere_frames``
+    (n_seg, 2, 3, 3), for segment k the rotations from E to the frames of its hemisphere and of its
+    blended hemisphere (a ray leaving in direction n, E, leaves in direction F n of the hemisphere;
+    None: the identity, the straight track along +x of a hemisphere computed for this very flight;
+    :func:`turn_about_z` for a heading); ``next_hemisphere_index`` and ``hemisphere_weight`` (n_seg,)
+    make segment k radiate the levels (1 − w_k) L[h_k] + w_k L[h'_k] (dB, each hemisphere read at its
+    own co-moving direction and spread from its own radius; None: w = 0).
     """
 
     time_s: np.ndarray
     position_m: np.ndarray
     hemisphere_index: np.ndarray
     atmospheres: tuple[AtmosphereState | None, ...]
+    hemisphere_frames: np.ndarray | None = None
+    next_hemisphere_index: np.ndarray | None = None
+    hemisphere_weight: np.ndarray | None = None
 
     def __post_init__(self):
         t = np.asarray(self.time_s, float)
@@ -165,6 +175,19 @@ class Trajectory:
             raise PropagationError("trajectory: the flight path goes below the ground (z < 0)")
         if np.asarray(self.hemisphere_index).shape != (n,) or len(self.atmospheres) != n:
             raise PropagationError(f"trajectory: need one hemisphere index and one atmosphere per segment ({n})")
+        if self.hemisphere_frames is not None:
+            f = np.asarray(self.hemisphere_frames, float)
+            gram = np.einsum("...ji,...jk->...ik", f, f) if f.shape == (n, 2, 3, 3) else None
+            if gram is None or not np.all(np.isfinite(f)) or np.abs(gram - np.eye(3)).max() > 1e-9:
+                raise PropagationError(f"trajectory: hemisphere_frames must hold two rotation matrices (3 x 3, "
+                                       f"orthonormal) per segment, shape ({n}, 2, 3, 3)")
+        if (self.next_hemisphere_index is None) != (self.hemisphere_weight is None):
+            raise PropagationError("trajectory: next_hemisphere_index and hemisphere_weight go together")
+        if self.hemisphere_weight is not None:
+            w = np.asarray(self.hemisphere_weight, float)
+            if np.shape(self.next_hemisphere_index) != (n,) or w.shape != (n,) or not np.all((w >= 0.0) & (w <= 1.0)):
+                raise PropagationError(f"trajectory: next_hemisphere_index and hemisphere_weight (within [0, 1]) "
+                                       f"need one value per segment ({n})")
 
     @property
     def velocity_mps(self) -> np.ndarray:
@@ -296,21 +319,54 @@ def _map_weights(h_el, n_az, h_daz, m0, m1, m2, mlen):
 
 
 @kernel(inline=True)
-def _received_bands(h_levels, h, e0, we, a0, a1, wa, alpha, k, spread, re, delta, src, out):
+def _hemisphere_reading(h_el, n_az, h_daz, h_radius, h_mach, h, frames, turned, k, slot, n0, n1, n2, re):
+    """Where hemisphere h hears the ray leaving in direction n (E) at emission distance r_e: n in the hemisphere's
+    frame (``frames[k, slot]`` when ``turned[k]``), the map weights of d = (n − M_h)/|n − M_h|
+    (:func:`_map_weights`) and the spreading 20 log10(r_e |n − M_h| / r_h)."""
+    if turned[k]:
+        f = frames[k, slot]
+        t0 = f[0, 0] * n0 + f[0, 1] * n1 + f[0, 2] * n2
+        t1 = f[1, 0] * n0 + f[1, 1] * n1 + f[1, 2] * n2
+        n2 = f[2, 0] * n0 + f[2, 1] * n1 + f[2, 2] * n2
+        n0 = t0
+        n1 = t1
+    m0 = n0 - h_mach[h, 0]
+    m1 = n1 - h_mach[h, 1]
+    m2 = n2 - h_mach[h, 2]
+    mlen = np.sqrt(m0 * m0 + m1 * m1 + m2 * m2)
+    e0, we, a0, a1, wa = _map_weights(h_el, n_az, h_daz, m0, m1, m2, mlen)
+    return e0, we, a0, a1, wa, 20.0 * np.log10(re * mlen / h_radius[h])
+
+
+@kernel(inline=True)
+def _map_level(h_levels, h, e0, we, a0, a1, wa, b):
+    """Level (dB) of band b of hemisphere h at the bilinear weights of :func:`_map_weights`."""
+    lo = (1.0 - wa) * h_levels[h, e0, a0, b] + wa * h_levels[h, e0, a1, b]
+    hi = (1.0 - wa) * h_levels[h, e0 + 1, a0, b] + wa * h_levels[h, e0 + 1, a1, b]
+    return (1.0 - we) * lo + we * hi
+
+
+@kernel(inline=True)
+def _received_bands(h_levels, h, e0, we, a0, a1, wa, spread, w2, h2, e0b, web, a0b, a1b, wab, spread2,
+                    alpha, k, re, delta, src, out):
     """Mean-square band pressures ``out`` at the receiver before the ground: the map level less spreading and
-    absorption (``src``, per source band), shifted by δ bands (Doppler) into the receiver bands."""
+    absorption (``src``, per source band), shifted by δ bands (Doppler) into the receiver bands. With ``w2`` > 0
+    the level is (1 − w2)(map level of h − spread) + w2 (map level of h2 − spread2) (dB)."""
     n_b = src.size
     shift = int(np.floor(delta))
     frac = delta - shift
     for b in range(n_b):
-        lo = (1.0 - wa) * h_levels[h, e0, a0, b] + wa * h_levels[h, e0, a1, b]
-        hi = (1.0 - wa) * h_levels[h, e0 + 1, a0, b] + wa * h_levels[h, e0 + 1, a1, b]
-        lev = (1.0 - we) * lo + we * hi
+        lev = _map_level(h_levels, h, e0, we, a0, a1, wa, b)
+        heard = lev - spread
+        if w2 > 0.0:
+            lev2 = _map_level(h_levels, h2, e0b, web, a0b, a1b, wab, b)
+            lev = (1.0 - w2) * lev + w2 * lev2
+            heard = (1.0 - w2) * heard + w2 * (lev2 - spread2)
         # absorption at the band's received frequency (band number b + δ, α linear between bands)
         q = min(max(b + shift, 0), n_b - 2)
         wq = min(max(b + delta - q, 0.0), 1.0)
         att = (1.0 - wq) * alpha[k, q] + wq * alpha[k, q + 1]
-        src[b] = np.exp(_DB_TO_NEPER * (lev - spread - att * re)) if lev > LEVEL_FLOOR_DB else 0.0
+        src[b] = np.exp(_DB_TO_NEPER * (heard - att * re)) if lev > LEVEL_FLOOR_DB else 0.0
         out[b] = 0.0
     for b in range(n_b):
         t0 = b + shift
@@ -377,11 +433,13 @@ def _ground_and_weighting(out, x0, x1, x2, s0, s1, s2, re, k_edge, ground_kind, 
 
 
 @kernel(parallel=True)
-def _propagate_kernel(rec, times, c, knot_t, knot_p, vel, hemi_of_seg, h_levels, h_el, h_daz, h_radius, h_mach,
+def _propagate_kernel(rec, times, c, knot_t, knot_p, vel, hemi_of_seg, hemi_next, hemi_weight, frames, turned, h_levels, h_el, h_daz, h_radius, h_mach,
                       alpha, a_weight, k_edge, ground_kind, coherent, beta, store_bands,
                       la_out, seg_out, bands_out):
     """Per receiver (parallel) and reception time: band levels (1), A-weighted level, segment.
 
+    ``hemi_of_seg``, ``hemi_next``, ``hemi_weight`` (n_seg,) the segments' hemispheres and blend weights,
+    ``frames`` (n_seg, 2, 3, 3) the rotations E → hemisphere frames, applied where ``turned`` (n_seg,) (:class:`Trajectory`);
     ``h_levels`` (n_hemi, n_el, n_az, n_b) dB; ``alpha`` (n_seg, n_b) dB/m; ``beta`` (n_b,)
     normalised admittance for the impedance ground (ground_kind 2), ground_kind 1 = hard,
     0 = none. Outputs: ``la_out`` (n_r, n_t) dB(A), ``seg_out`` (n_r, n_t) emitting segment or
@@ -419,17 +477,19 @@ def _propagate_kernel(rec, times, c, knot_t, knot_p, vel, hemi_of_seg, h_levels,
             n1 = r1 / re
             n2 = r2 / re
             h = hemi_of_seg[k]
-            # hemisphere direction d = (n − M_h)/|n − M_h| and its map angles
-            m0 = n0 - h_mach[h, 0]
-            m1 = n1 - h_mach[h, 1]
-            m2 = n2 - h_mach[h, 2]
-            mlen = np.sqrt(m0 * m0 + m1 * m1 + m2 * m2)
-            e0, we, a0, a1, wa = _map_weights(h_el, n_az, h_daz, m0, m1, m2, mlen)
-            spread = 20.0 * np.log10(re * mlen / h_radius[h])
+            e0, we, a0, a1, wa, spread = _hemisphere_reading(h_el, n_az, h_daz, h_radius, h_mach, h, frames, turned,
+                                                             k, 0, n0, n1, n2, re)
+            w2 = hemi_weight[k]
+            h2 = hemi_next[k]
+            e0b, web, a0b, a1b, wab, spread2 = e0, we, a0, a1, wa, spread
+            if w2 > 0.0:
+                e0b, web, a0b, a1b, wab, spread2 = _hemisphere_reading(h_el, n_az, h_daz, h_radius, h_mach, h2, frames,
+                                                                        turned, k, 1, n0, n1, n2, re)
             # Doppler: shift by δ bands with the trajectory's Mach number toward the receiver
             mr = (vel[k, 0] * n0 + vel[k, 1] * n1 + vel[k, 2] * n2) / c
             delta = -10.0 * np.log10(1.0 - mr)
-            _received_bands(h_levels, h, e0, we, a0, a1, wa, alpha, k, spread, re, delta, src, out)
+            _received_bands(h_levels, h, e0, we, a0, a1, wa, spread, w2, h2, e0b, web, a0b, a1b, wab, spread2,
+                            alpha, k, re, delta, src, out)
             la_ms = _ground_and_weighting(out, x0, x1, x2, s0, s1, s2, re, k_edge, ground_kind, coherent, beta,
                                           a_weight, store_bands, bands_out, i, j)
             la_out[i, j] = 10.0 * np.log10(la_ms) if la_ms > floor_msp else LEVEL_FLOOR_DB
@@ -460,9 +520,10 @@ def _check_inputs(hemispheres, trajectory, receivers, speed_of_sound_mps):
         if h.levels_db.shape != shape or np.any(np.asarray(h.band_numbers) != bands) or \
                 np.any(h.elevation_deg != hemispheres[0].elevation_deg):
             raise PropagationError(f"hemispheres[{i}]: grid and bands must match hemispheres[0]")
-    idx = np.asarray(trajectory.hemisphere_index)
-    if np.any(idx < 0) or np.any(idx >= len(hemispheres)):
-        raise PropagationError(f"trajectory.hemisphere_index must lie in 0..{len(hemispheres) - 1}")
+    for field in ("hemisphere_index", "next_hemisphere_index"):
+        idx = getattr(trajectory, field)
+        if idx is not None and (np.any(np.asarray(idx) < 0) or np.any(np.asarray(idx) >= len(hemispheres))):
+            raise PropagationError(f"trajectory.{field} must lie in 0..{len(hemispheres) - 1}")
     rec = np.asarray(receivers, float)
     if rec.ndim != 2 or rec.shape[1] != 3 or not np.all(np.isfinite(rec)) or np.any(rec[:, 2] < 0):
         raise PropagationError("receivers must be finite (n, 3) positions in E with z >= 0")
@@ -471,6 +532,27 @@ def _check_inputs(hemispheres, trajectory, receivers, speed_of_sound_mps):
     if np.any(np.linalg.norm(trajectory.velocity_mps, axis=1) >= 0.95 * speed_of_sound_mps):
         raise PropagationError("trajectory: flight speeds must stay below 0.95 of the sound speed")
     return bands, rec
+
+
+def turn_about_z(heading_rad) -> np.ndarray:
+    """(..., 3, 3) rotations E → the level heading frame of headings χ (rad, from +x toward +y): R_z(−χ)."""
+    c, s = np.cos(heading_rad), np.sin(heading_rad)
+    zero, one = np.zeros_like(c), np.ones_like(c)
+    return np.stack([np.stack([c, s, zero], -1), np.stack([-s, c, zero], -1), np.stack([zero, zero, one], -1)], -2)
+
+
+def _segment_states(trajectory: Trajectory) -> tuple[np.ndarray, ...]:
+    """Per segment: the blended hemisphere's index and weight, the frames and whether they turn (kernel layout)."""
+    n = np.asarray(trajectory.hemisphere_index).size
+    if trajectory.hemisphere_weight is None:
+        nxt, weight = np.zeros(n, dtype=np.int64), np.zeros(n)
+    else:
+        nxt = np.ascontiguousarray(trajectory.next_hemisphere_index, dtype=np.int64)
+        weight = np.ascontiguousarray(trajectory.hemisphere_weight, dtype=float)
+    if trajectory.hemisphere_frames is None:
+        return nxt, weight, np.zeros((n, 2, 3, 3)), np.zeros(n, dtype=np.bool_)
+    frames = np.ascontiguousarray(trajectory.hemisphere_frames, dtype=float)
+    return nxt, weight, frames, np.any(frames != np.eye(3), axis=(1, 2, 3))
 
 
 def propagate(hemispheres, trajectory: Trajectory, receivers, time_s, speed_of_sound_mps: float,
@@ -506,7 +588,7 @@ def propagate(hemispheres, trajectory: Trajectory, receivers, time_s, speed_of_s
     out = np.empty((n_r, n_t, bands.size) if store_bands else (1, 1, 1))
     _propagate_kernel(np.ascontiguousarray(rec), times, c, np.ascontiguousarray(trajectory.time_s, dtype=float),
                       np.ascontiguousarray(trajectory.position_m, dtype=float), np.ascontiguousarray(trajectory.velocity_mps),
-                      np.ascontiguousarray(trajectory.hemisphere_index, dtype=np.int64), h_levels,
+                      np.ascontiguousarray(trajectory.hemisphere_index, dtype=np.int64), *_segment_states(trajectory), h_levels,
                       np.ascontiguousarray(hemispheres[0].elevation_deg, dtype=float),
                       360.0 / hemispheres[0].azimuth_deg.size, np.array([h.radius_m for h in hemispheres], float),
                       h_mach, alpha, a_weight, k_edge, ground_kind, bool(ground.coherent),

@@ -1,11 +1,13 @@
-"""Aircraft trim: steady-flight force and moment balance (the role NDARC had in the thesis).
+"""Aircraft trim: steady and quasi-static force and moment balance (the role NDARC had in the thesis).
 
-Frames and signs: docs/reference/conventions.md. For an aircraft flying with constant velocity
-V_G = (V_h, 0, V_c) the unknowns are the body pitch θ, the body roll φ and the thrust T_i of
-every rotor; each rotor's thrust acts along its shaft axis a_i (tip-path plane perpendicular
-to the shaft, i.e. zero hub-moment targets). The balance, in the ground frame G:
+Frames and signs: docs/reference/conventions.md. For an aircraft flying with velocity
+V_G = (V_h, 0, V_c) and acceleration a_G (zero in steady flight; quasi-static flight along a path,
+nps.mission.paths: the balance of the instant, rates of the attitude neglected) the unknowns are the
+body pitch θ, the body roll φ and the thrust T_i of every rotor; each rotor's thrust acts along its
+shaft axis a_i (tip-path plane perpendicular to the shaft, i.e. zero hub-moment targets). The
+balance, in the ground frame G:
 
-    Σ T_i R_GB a_i  −  W ẑ  −  ½ ρ |V|² f V̂  = 0                         (forces)
+    Σ T_i R_GB a_i  −  W ẑ  −  ½ ρ |V|² f V̂  = m a_G                     (forces)
     Σ p_i × (T_i a_i)  −  Σ s_i Q_i a_i  = 0   (selected components, body frame, about the CG)
 
 p_i is the hub position relative to the CG, s_i the rotation sign and Q_i the rotor torque
@@ -89,11 +91,15 @@ class AircraftTrimError(RuntimeError):
 
 @dataclass(frozen=True)
 class FlightCondition:
-    """Steady flight: horizontal speed, climb speed (negative in descent), atmosphere."""
+    """Flight at one instant: horizontal speed, climb speed (negative in descent), atmosphere, and the
+    acceleration (m/s², ground frame G: x along the horizontal velocity, y port, z up; zero in steady
+    flight). A coordinated turn to starboard at speed V on radius R has a_G = (0, −V²/R, 0): the trimmed
+    roll is its bank, tan φ = V²/(g R) for a rotor thrust along z_B without drag."""
 
     forward_speed_mps: float
     climb_speed_mps: float
     atmosphere: AtmosphereState
+    acceleration_mps2: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
     @property
     def velocity_g(self) -> np.ndarray:
@@ -194,6 +200,8 @@ def _residual(x, states, moments, aircraft, flight, weight_n, length_m) -> np.nd
     speed = float(np.linalg.norm(velocity))
     drag = 0.5 * flight.atmosphere.density_kg_m3 * speed**2 * aircraft["fuselage_drag_area_m2"]
     force = np.array([0.0, 0.0, -weight_n]) - (drag * velocity / speed if speed > 0 else 0.0)
+    # m a_G: in steady flight a_G = 0 and x − 0.0 ≡ x, the steady balance bit for bit
+    force = force - aircraft["gross_weight_kg"] * np.asarray(flight.acceleration_mps2, dtype=float)
     moment_b = np.zeros(3)
     for state, thrust in zip(states, thrusts):
         force = force + thrust * (r_gb @ state.axis_b)
@@ -231,11 +239,18 @@ def _balance(aircraft: dict, flight: FlightCondition, states: list[_RotorState])
     except ConvergenceError as failure:
         raise AircraftTrimError(
             f"aircraft '{aircraft['name']}' did not trim at V_h={flight.forward_speed_mps} m/s, "
-            f"V_c={flight.climb_speed_mps} m/s: residuals {failure.value} (forces/W, moments/(W R)); inputs to check: "
+            f"V_c={flight.climb_speed_mps} m/s{_acceleration_text(flight)}: residuals {failure.value} (forces/W, moments/(W R)); inputs to check: "
             f"gross_weight_kg, fuselage_drag_area_m2, the rotors' hub_position_m and thrust_axis_body (force and "
             f"moment balance), and the segment's speeds"
         ) from failure
     return solution.x, solution.iterations
+
+
+def _acceleration_text(flight: FlightCondition) -> str:
+    """``, a=(x, y, z) m/s²`` of an accelerated flight for a message, "" in steady flight."""
+    if not any(flight.acceleration_mps2):
+        return ""
+    return ", a=(" + ", ".join(f"{c:.4g}" for c in flight.acceleration_mps2) + ") m/s²"
 
 
 def _check_thrusts(aircraft: dict, states: list[_RotorState], thrusts: np.ndarray) -> None:

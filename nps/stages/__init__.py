@@ -22,13 +22,14 @@ from typing import Callable
 # the stages, in workflow order (``radiate``, for tabulated sources, is not in the study workflow;
 # ``rig``, the set-up of a rig, ``carpet`` and ``station_loads`` are the rig-only stages, workflow/rules/rig.smk; ``case``, the
 # chain of one design-study case in one process, and ``trade``, a study's trade table: designs.smk;
+# ``path``, a flight path's history and trim states (command ``nps path``, no rule yet);
 # ``results_summary``, the campaign's results page the report opens on: study.smk; ``wopwop_run``,
 # ``wopwop_export`` and ``wopwop_read``, the commands ``nps wopwop run | export | read``, the export also a rule:
 # wopwop.smk);
 # stage X is ``nps.stages.X.run``
 STAGES = ("trim", "loads", "wake", "observers", "acoustics", "hsi", "metrics", "tones",
           "rotor_figures", "hsi_figure", "study_maps", "rotor_maps", "bvi_hotspot", "summary", "results_summary",
-          "source_hemisphere", "footprint", "certification", "radiate", "rig", "carpet", "station_loads", "case", "trade",
+          "source_hemisphere", "footprint", "certification", "path", "radiate", "rig", "carpet", "station_loads", "case", "trade",
           "wopwop_run", "wopwop_export", "wopwop_read")
 
 

@@ -29,3 +29,27 @@ def test_command_and_run_write_identical_artifacts(tmp_path, repo_root):
     assert written == sorted(p.name for p in (tmp_path / "run/loads").iterdir()) and len(written) == 6
     for name in written:
         assert (tmp_path / "cli/loads" / name).read_bytes() == (tmp_path / "run/loads" / name).read_bytes(), name
+
+
+def test_path_command_and_run_write_identical_artifacts(tmp_path, repo_root):
+    """``python -m nps path`` at its defaults and the stage run with the plan's params (the config schema's
+    defaults) write the same bytes."""
+    from nps.app.config import load_path, schema_defaults
+    from nps.app.plan import CaseConfig, stage_params
+    from nps.cli import path as path_cli
+    from nps.stages import path
+
+    aircraft_path = repo_root / "config/aircraft/hexacopter.yaml"
+    path_file = repo_root / "config/paths/hexacopter_transition.yaml"
+    assert path_cli.main(["--aircraft", str(aircraft_path), "--path", str(path_file), "--out", str(tmp_path / "cli")]) == 0
+    aircraft = load_aircraft(aircraft_path)
+    params = stage_params("path", CaseConfig(aircraft, schema_defaults("config")))
+    params.update(aircraft="hexacopter", path_config=load_path(path_file, params["paths"]["dt_s"]))
+    path.run({}, {"history": tmp_path / "run/path_history.parquet", "states": tmp_path / "run/path_states.parquet"}, params)
+    for name in ("path_history.parquet", "path_states.parquet"):
+        assert (tmp_path / "cli" / name).read_bytes() == (tmp_path / "run" / name).read_bytes(), name
+    import pandas as pd
+
+    states = pd.read_parquet(tmp_path / "run/path_states.parquet")  # hover at the start of the acceleration: one key
+    assert (states.groupby("state").size() == 6).all()
+    assert set(pd.read_parquet(tmp_path / "run/path_history.parquet").state) <= set(states.state)
