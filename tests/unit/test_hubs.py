@@ -159,8 +159,8 @@ def test_hingeless_first_harmonic_flapping_matches_the_spring_hinge_response(nu,
 
 
 def test_hingeless_blade_answers_a_1_per_rev_pitch_with_less_than_90_deg_lag_and_the_closed_form_amplitude():
-    """ν_β 1.12, γ 8, θ1c 1°: the closed form (ε = 0, x0 = 0) |β1| = θ1 / √(1 + ((ν² − 1)/(γ/8))²) = 0.9733°,
-    lag atan((γ/8)/(ν² − 1)) = 76.8°; the code with root cutout 0.1 R (x0 changes A and D: the analytic function
+    """ν_β 1.12, γ 8, θ1c 1°: the closed form (ε = 0, x0 = 0) |β1| = θ1 / √(1 + ((ν² − 1)/(γ/8))²) = 0.9691°,
+    lag atan((γ/8)/(ν² − 1)) = 75.73°; the code with root cutout 0.1 R (x0 changes A and D: the analytic function
     on its stations) within 1 % in amplitude and 0.5° in lag, and the lag below the articulated blade's 90°."""
     nu, gamma8 = 1.12, 1.0
     amplitude = 1.0 / math.sqrt(1.0 + ((nu**2 - 1.0) / gamma8) ** 2)
