@@ -22,7 +22,7 @@ import yaml
 from nps.app.broadband import broadband_model
 from nps.rotor.airfoils import AirfoilError
 from nps.rotor.blade import BladeError
-from nps.rotor.geometry import RotorGeometry
+from nps.rotor.geometry import RotorGeometry, without_rotor_label
 
 SCHEMA_DIR = Path(__file__).resolve().parent / "schemas"
 
@@ -294,11 +294,17 @@ def yaml_error_text(exc: yaml.YAMLError) -> str:
 def load_aircraft(path: str | Path, document: Any = None) -> dict:
     """Read and validate one aircraft file, with its own cross checks; schema defaults filled. ``document``:
     the file's content as read (e.g. a design-study variant of it), validated as if read from ``path``."""
+    from nps.rotor.control import default_mode
+
     document = read_yaml(path) if document is None else copy.deepcopy(document)
+    rotors = document.get("rotors") if isinstance(document, dict) else None
+    given = [isinstance(r, dict) and "control" in r for r in rotors] if isinstance(rotors, list) else []
     data = fill_defaults(validate(document, "aircraft", path), load_schema("aircraft"))
     problems = []
     names = [rotor["name"] for rotor in data["rotors"]]
     for index, rotor in enumerate(data["rotors"]):
+        if not given[index]:  # the schema's default, collective, unless the rotor is a teetering tail rotor
+            rotor["control"] = default_mode(rotor)
         where = f"rotors[{index}]"
         if names.count(rotor["name"]) > 1:
             problems.append((f"{where}.name", f"expected a unique rotor name, '{rotor['name']}' repeats"))
@@ -537,10 +543,12 @@ def _rotor_sections(rotor: dict, where: str, base: Path) -> list[tuple[str, str]
             for key in ("extrapolation", "reynolds"):
                 if key in foil and not (key == "extrapolation" and foil[key] == extrapolation):
                     problems.append((f"{where}.{field}.{key}", "applies to a table only; expected a table"))
+    from nps.rotor.control import TRIMMED_PITCH
+
     mode = rotor["control"]
-    if mode == "collective" and "pitch_deg" in rotor:
-        problems.append((f"{where}.pitch_deg", "expected no pitch_deg with control 'collective' (the trim sets the pitch)"))
-    if mode != "collective" and "pitch_deg" not in rotor:
+    if mode in TRIMMED_PITCH and "pitch_deg" in rotor:
+        problems.append((f"{where}.pitch_deg", f"expected no pitch_deg with control '{mode}' (the trim sets the pitch)"))
+    if mode not in TRIMMED_PITCH and "pitch_deg" not in rotor:
         problems.append((f"{where}.pitch_deg", f"required with control '{mode}'"))
     for field, holder in holders + [("blade", rotor.get("blade", {}))]:
         if "table" in holder:
@@ -915,16 +923,22 @@ def rig_disk_problems(rotors: list[dict]) -> list[tuple[str, str]]:
 def _rig_rotor(ref: dict, base: Path, prepare) -> dict:
     """The validated rotor of a rig's rotor reference (``file``, or ``aircraft`` and ``name``; paths relative to
     ``base``), made the stages' rotor by ``prepare`` (the rig's speed, control, placement)."""
+    from nps.rotor.control import default_mode
+
     if "file" in ref:
         rotor_file = base / ref["file"]
         rotor_schema = {"$defs": load_schema("aircraft")["$defs"], "$ref": "#/$defs/rotor"}
         rotor = prepare(read_yaml(rotor_file))
+        given = isinstance(rotor, dict) and "control" in rotor
         rotor = fill_defaults(validate(rotor, rotor_schema, rotor_file), rotor_schema)
+        if not given:  # as for an aircraft's rotors (load_aircraft)
+            rotor["control"] = default_mode(rotor)
     else:
         rotor_file = base / ref["aircraft"]
         rotor = prepare(aircraft_rotor(load_aircraft(rotor_file), ref["name"], rotor_file))
-    _raise(rotor_file, [(f"rotor '{rotor['name']}'{field[len('rotor'):]}", what)
-                        for field, what in _rotor_sections(rotor, "rotor", rotor_file.parent)])
+    _raise(rotor_file, [(place, without_rotor_label(place, what)) for field, what in
+                        _rotor_sections(rotor, "rotor", rotor_file.parent)
+                        for place in [f"rotor '{rotor['name']}'{field[len('rotor'):]}"]])
     _raise(rotor_file, [("rotor", what) for _, what in solidity_problems([rotor])])
     return rotor
 
@@ -989,6 +1003,10 @@ def _rig_rotors(data: dict, path: Path) -> tuple[list[dict], list[dict]]:
             problems.append((f"{where}.control", "'rpm' is not available for a rotor coupled to others through the free "
                              "wake (wake.model free): its speed is not re-trimmed in their wakes; use collective (a "
                              "thrust target) or fixed (a pitch)"))
+        if free and rotor["control"] == "collective_only":
+            problems.append((f"{where}.control", "'collective_only' is not available for a rotor coupled to others "
+                             "through the free wake (wake.model free): the re-trim in their wakes sets cyclic pitch; "
+                             "use fixed (a pitch), or collective_only with a prescribed wake"))
         rotors.append(rotor)
         conditions.append(condition)
     _raise(path, problems)
@@ -996,20 +1014,30 @@ def _rig_rotors(data: dict, path: Path) -> tuple[list[dict], list[dict]]:
     return rotors, conditions
 
 
-def _station_problems(stations: list, rotors: list[dict], n_r: int) -> list[tuple[str, str]]:
-    """Stations r/R outside a rotor's disk-table stations (midpoints of n_r equal elements from root to tip); one
-    problem per station, naming the first such rotor."""
-    problems = []
-    for k, station in enumerate(stations):
-        for rotor in rotors:
-            radius, root = float(rotor["radius_m"]), float(rotor["root_cutout_m"])
-            low, high = (root + (radius - root) / (2 * n_r)) / radius, 1.0 - (radius - root) / (2 * n_r * radius)
-            if not low <= station <= high:
-                problems.append((f"stations_r_over_R[{k}]", (
-                    f"r/R {station} outside rotor '{rotor['name']}''s disk stations [{low:.4g}, {high:.4g}] "
-                    f"(resolution.n_r {n_r}): loads at a station are interpolated between the table's stations")))
-                break  # one problem per station
-    return problems
+def rotor_stations(data: Mapping, rotors: list[dict]) -> tuple[dict[str, list[float]], list[tuple[str, str]]]:
+    """(stations, problems) of a validated rig: each rotor's radial stations r/R of the loads-at-station output
+    (its ``rotors[].stations_r_over_R``, else the rig's ``stations_r_over_R``; a rotor with neither is left out)
+    and the stations outside a rotor's disk-table stations (midpoints of n_r equal elements from root to tip):
+    one problem per station of the rig's list (naming the first such rotor), per station of a rotor's own."""
+    n_r, common = int(data["resolution"]["n_r"]), data.get("stations_r_over_R")
+    entries = data.get("rotors") or [{}]
+    stations, problems, blamed = {}, [], set()
+    for i, (entry, rotor) in enumerate(zip(entries, rotors)):
+        own = entry.get("stations_r_over_R")
+        chosen, field = (own, f"rotors[{i}] '{rotor['name']}'.stations_r_over_R") if own else (common, "stations_r_over_R")
+        if not chosen:
+            continue
+        stations[rotor["name"]] = [float(v) for v in chosen]
+        radius, root = float(rotor["radius_m"]), float(rotor["root_cutout_m"])
+        low, high = (root + (radius - root) / (2 * n_r)) / radius, 1.0 - (radius - root) / (2 * n_r * radius)
+        for k, station in enumerate(chosen):
+            if not low <= station <= high and f"{field}[{k}]" not in blamed:
+                blamed.add(f"{field}[{k}]")
+                problems.append((f"{field}[{k}]", (
+                    f"r/R {station} outside the disk stations [{low:.4g}, {high:.4g}] of "
+                    f"{'the rotor' if own else repr(rotor['name']).join(('rotor ', ''))} (resolution.n_r {n_r}): loads "
+                    f"at a station are interpolated between the table's stations")))
+    return stations, problems
 
 
 def _period_problems(data: Mapping, rotors, conditions) -> list[tuple[str, str]]:
@@ -1040,8 +1068,8 @@ def load_rig(path: str | Path) -> dict:
     :func:`nps.rig.case.rotor_for_rig` of the one-rotor form, :func:`nps.rig.case.rig_rotor` of each ``rotors[]``
     entry; validated like an aircraft's ``rotors[]`` entries, tables resolved), ``rotor_conditions`` (each rotor's
     condition: the rig's ``condition``, or :func:`nps.rig.case.rotor_condition`), ``rotor_config`` (the first
-    rotor), ``microphones_T`` / ``microphone_groups`` (positions in the test frame, group index) and
-    ``settings`` (:func:`rig_settings`).
+    rotor), ``rotor_stations`` (each rotor's stations r/R, :func:`rotor_stations`), ``microphones_T`` /
+    ``microphone_groups`` (positions in the test frame, group index) and ``settings`` (:func:`rig_settings`).
     """
     from nps.noise.observers import ObserverError
     from nps.rig.case import microphone_positions
@@ -1056,11 +1084,15 @@ def load_rig(path: str | Path) -> dict:
     rotors, conditions = _rig_rotors(data, path)
     _raise(path, _azimuth_grid_problems(data["resolution"]["n_psi"], {"the rig's": rotors}))
     _raise(path, _period_problems(data, rotors, conditions))
-    if "stations_r_over_R" in data:
-        _raise(path, _station_problems(data["stations_r_over_R"], rotors, int(data["resolution"]["n_r"])))
+    stations, problems = rotor_stations(data, rotors)
+    _raise(path, problems)
+    if data["loads_only"] and data["carpet"]:
+        _raise(path, [("carpet", "true with loads_only: the carpet is drawn from the acoustics that loads_only leaves "
+                                 "out: remove one of them")])
     try:
         positions, groups = microphone_positions(data["microphones"], path.parent)
     except ObserverError as exc:
         raise ConfigError(f"{path}: microphones: {exc}") from None
     return {**data, "rotor_config": rotors[0], "rotor_configs": rotors, "rotor_conditions": conditions,
-            "microphones_T": positions, "microphone_groups": groups, "settings": rig_settings(data)}
+            "rotor_stations": stations, "microphones_T": positions, "microphone_groups": groups,
+            "settings": rig_settings(data)}

@@ -24,7 +24,7 @@ import pandas as pd
 
 from nps.rotor.bet import MAX_CONTROL_RAD
 from nps.rotor.airfoils import LinearAirfoil
-from nps.rotor.geometry import RotorGeometry
+from nps.rotor.geometry import RotorGeometry, without_rotor_label
 
 if TYPE_CHECKING:  # an annotation only: the trim, loads and observers jobs need no wake module
     from nps.wake.prescribed import WakeModel
@@ -108,8 +108,9 @@ def enforce(findings: Iterable[Finding | None], allow_outside_validity: bool, wh
     """
     found = [f for f in findings if f is not None]
     if found and not allow_outside_validity:
-        others = f"; also outside: {', '.join(f.quantity for f in found[1:])}" if len(found) > 1 else ""
-        raise ValidityError(f"{where}: {found[0].message()}{others}; "
+        others = (f"; also outside: {', '.join(without_rotor_label(where, f.quantity) for f in found[1:])}"
+                  if len(found) > 1 else "")
+        raise ValidityError(f"{where}: {without_rotor_label(where, found[0].message())}{others}; "
                             f"set allow_outside_validity: true in the campaign to run it with a warning")
     return [f.as_dict() for f in found]
 

@@ -3,7 +3,8 @@
 The rotor comes from a rotor YAML (``--rotor-file``, one ``rotors[]`` entry of an aircraft file) or an
 aircraft file (``--aircraft`` with ``--rotor``); or give a whole rig with ``--rig``
 (config/rigs/NAME.yaml). The condition: rotor speed, control mode (``fixed``: given pitch and speed;
-``rpm``: pitch given, speed trimmed to ``--thrust-n``; ``collective``: pitch trimmed to ``--thrust-n``),
+``rpm``: pitch given, speed trimmed to ``--thrust-n``; ``collective``: pitch trimmed to ``--thrust-n``;
+``collective_only``: collective alone, no cyclic, teeter free),
 shaft angle (positive aft) and wind-tunnel speed (0: hover), atmosphere given directly. Microphones in
 the hub-fixed test frame T (x_T downstream, z_T up, y_T = z_T × x_T; docs/reference/rigs.md): ``--mic X Y Z``
 (repeatable), ``--mic-file`` (CSV x_m,y_m,z_m or YAML), ``--arc-radius-m`` with ``--arc-angles-deg``.
@@ -62,7 +63,8 @@ def _rig_from_options(args) -> dict:
     acoustics = {key: default(f"acoustics.{key}") for key in ("dual_compact_chord_fractions", "bvispl_harmonics")}
     return {"name": "rotor", "description": "python -m nps rotor", "rotor": rotor, "condition": condition,
             "microphones": mics, "resolution": resolution, "acoustics": acoustics,
-            "allow_outside_validity": bool(args.allow_outside_validity)}
+            "allow_outside_validity": bool(args.allow_outside_validity),
+            **({"loads_only": True} if args.loads_only else {})}
 
 
 def main(argv: list[str]) -> int:
@@ -74,10 +76,11 @@ def main(argv: list[str]) -> int:
     speed = ap.add_mutually_exclusive_group()
     speed.add_argument("--rpm", type=float, help="rotor speed (rev/min)")
     speed.add_argument("--omega-rad-s", type=float, help="rotor speed (rad/s)")
-    ap.add_argument("--control", choices=["collective", "rpm", "fixed"], help="default: the rotor's")
+    ap.add_argument("--control", choices=["collective", "collective_only", "rpm", "fixed"], help="default: the rotor's")
     ap.add_argument("--pitch-deg", type=float, help="blade pitch at 75 %% radius (control rpm, fixed)")
-    ap.add_argument("--thrust-n", type=float, help="thrust target (control collective, rpm)")
+    ap.add_argument("--thrust-n", type=float, help="thrust target (control collective, collective_only, rpm)")
     ap.add_argument("--no-flapping", action="store_true", help="rigid blades")
+    ap.add_argument("--loads-only", action="store_true", help="set-up and loads only, no acoustics (the rig's loads_only)")
     option(ap, "--shaft-angle-deg", "condition.shaft_angle_deg", schema="rig")
     option(ap, "--speed-mps", "condition.tunnel_speed_mps", schema="rig")
     ap.add_argument("--density-kg-m3", type=float, help="air density (default: ISA sea level, 1.225)")
@@ -167,7 +170,7 @@ def run_rig(rig_file: Path, out: Path, n_harmonics: int, debug: bool = False, op
     """Set-up, loads and acoustics of ``rig_file`` into ``out`` for every rotor of the rig, with the workflow's
     params (nps.app.plan.stage_params of the rig's rotors and settings, the jobs of aircraft ``rigs``, segment
     NAME, variant base); print each rotor's loads (thrust, torque, power and C_T of the loads radiated) and the
-    levels. The set-up (stage ``rig``) applies every check of the three stages before it writes
+    levels. A rig with ``loads_only`` stops after the loads (no acoustics, no levels). The set-up (stage ``rig``) applies every check of the three stages before it writes
     (nps.stages.rig). ``options``: the rig was built from the options (messages name them)."""
     from nps.app.config import ConfigError, load_rig
     from nps.app.io import read_signals, read_table, rotor_path
@@ -187,16 +190,17 @@ def run_rig(rig_file: Path, out: Path, n_harmonics: int, debug: bool = False, op
         ("acoustics", {"disks": str(loads), "trim": trim, "observers": mics}, {"signals": str(out / "acoustics")},
          {**stage_params("acoustics", case), "obsset": "microphones", "variant": "base", **where}),
     ]
-    for stage, inputs, outputs, params in steps:
+    for stage, inputs, outputs, params in steps[:2] if rig["loads_only"] else steps:
         status = run_stage(stage, inputs, outputs, params, debug)
         if status:
             return status
     names = list(case.rotors)
     rows = read_table(trim).set_index("rotor")
     bpf_hz = {name: rows.loc[name, "n_blades"] * rows.loc[name, "omega_rad_s"] / (2.0 * math.pi) for name in names}
-    levels = rotor_levels(read_signals(out / "acoustics", names), bpf_hz, n_harmonics)
-    levels = read_table(mics)[["observer", "x_T_m", "y_T_m", "z_T_m"]].merge(levels, on="observer")
-    levels.to_csv(out / "levels.csv", index=False, float_format="%.6g")
+    if not rig["loads_only"]:
+        levels = rotor_levels(read_signals(out / "acoustics", names), bpf_hz, n_harmonics)
+        levels = read_table(mics)[["observer", "x_T_m", "y_T_m", "z_T_m"]].merge(levels, on="observer")
+        levels.to_csv(out / "levels.csv", index=False, float_format="%.6g")
     print()
     for name in names:
         summary = read_table(rotor_path(loads, name, "_summary")).set_index("quantity")["value"]
@@ -204,6 +208,9 @@ def run_rig(rig_file: Path, out: Path, n_harmonics: int, debug: bool = False, op
         print(f"rotor {name}: omega {omega:.6g} rad/s ({omega * 30 / math.pi:.6g} rpm), thrust {summary['thrust_N']:.6g} N, "
               f"torque {summary['torque_Nm']:.6g} N m, power {summary['power_W']:.6g} W, C_T {summary['ct']:.5g}, "
               f"BPF {bpf_hz[name]:.6g} Hz")
+    if rig["loads_only"]:
+        print(f"loads only (loads_only): no acoustics; written: {loads}")
+        return 0
     if rig["models"]["bvi"]:
         print(f"note: the trimmed loads are radiated (variant base); the rig's wake and BVI loads (models.bvi): "
               f"snakemake -j2 {rig['name']}")

@@ -38,7 +38,7 @@ import pandas as pd
 
 from nps.core import frames
 from nps.rotor.bet import DiskGrid
-from nps.rotor.control import RotorControl, RotorSolution, solve_rotor
+from nps.rotor.control import TRIMMED_PITCH, RotorControl, RotorSolution, default_mode, solve_rotor
 from nps.noise.observers import ObserverError, points, with_directions
 from nps.rotor.geometry import OperatingPoint, RotorGeometry
 from nps.noise.signals import signal_arrays
@@ -128,23 +128,23 @@ def rotor_for_rig(rotor: Mapping, condition: Mapping) -> dict:
     for key in CONDITION_ROTOR_FIELDS:
         if key in condition:
             out[key] = condition[key]
-    if out.get("control", "collective") == "collective":
+    if out.get("control", default_mode(out)) in TRIMMED_PITCH:
         out.pop("pitch_deg", None)
     return out
 
 
 def control_conflicts(mode: str, condition: Mapping, where: str = "condition") -> list[tuple[str, str]]:
     """(field, problem) of every condition value the control ``mode`` cannot use: a thrust target with
-    ``fixed`` (the thrust is the answer), a pitch with ``collective`` (the trim sets it), hub-moment targets
-    without the cyclic of ``collective`` with flapping. A value that would be ignored is refused, not dropped.
+    ``fixed`` (the thrust is the answer), a pitch with ``collective`` or ``collective_only`` (the trim sets it),
+    hub-moment targets without the cyclic of ``collective`` with flapping. A value that would be ignored is refused, not dropped.
     ``where``: the fields' prefix (``rotors[1] 'tail'`` for a ``rotors[]`` entry)."""
     problems = []
     if mode == "fixed" and "thrust_N" in condition:
         problems.append((f"{where}.thrust_N", f"got {condition['thrust_N']!r}, but control 'fixed' uses no thrust "
                          "target (the thrust is the answer of the given pitch and speed): remove it, or trim to it "
                          "with control 'collective' or 'rpm'"))
-    if mode == "collective" and "pitch_deg" in condition:
-        problems.append((f"{where}.pitch_deg", f"got {condition['pitch_deg']!r}, but control 'collective' trims the "
+    if mode in TRIMMED_PITCH and "pitch_deg" in condition:
+        problems.append((f"{where}.pitch_deg", f"got {condition['pitch_deg']!r}, but control '{mode}' trims the "
                          "pitch to the thrust target: remove it, or hold it with control 'fixed' or 'rpm'"))
     cyclic = mode == "collective" and bool(condition.get("flapping", True))
     for key in ("roll_moment_Nm", "pitch_moment_Nm"):
@@ -152,6 +152,17 @@ def control_conflicts(mode: str, condition: Mapping, where: str = "condition") -
             problems.append((f"{where}.{key}", f"got {condition[key]!r}, but only control 'collective' with flapping "
                              f"trims the hub moments (control '{mode}'): remove it"))
     return problems
+
+
+def station_params(rig: Mapping) -> dict:
+    """``stations`` and ``rotors`` params of a loaded rig's station_loads jobs (:mod:`nps.stages.station_loads`):
+    the rig's ``stations_r_over_R`` list and every rotor when all rotors use it, else ``{rotor: stations}`` of the
+    rotors that have stations (``rotor_stations``, :func:`nps.app.config.rotor_stations`), in rig order."""
+    stations, names = rig["rotor_stations"], [r["name"] for r in rig["rotor_configs"]]
+    common = rig.get("stations_r_over_R")
+    if common is not None and list(stations) == names and all(v == [float(x) for x in common] for v in stations.values()):
+        return {"stations": common, "rotors": names}
+    return {"stations": stations, "rotors": list(stations)}
 
 
 def read_microphone_file(path: str | Path) -> np.ndarray:

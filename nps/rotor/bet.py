@@ -27,11 +27,13 @@ Pitch (eq. 4.13, erratum)
 Sectional aerodynamics (eq. 4.1–4.2 without the small-angle approximation): see
 :func:`section_forces`.
 
-Flapping (rigid blade, hinge offset e, uniform mass)
-    β'' + ν_β² β = M_β(ψ) / (I_β Ω²),   ν_β² = 1 + 3e / (2 (R − e)),   I_β = ρ a c R⁴ / γ
+Flapping (rigid blade, hinge offset e, uniform mass; hingeless: a hinge spring K_β, zero at the precone β_p)
+    β'' + ν_β² β = M_β(ψ) / (I_β Ω²) + (ν_β² − ν_0²) β_p,   I_β = ρ a c R⁴ / γ,
+    ν_0² = 1 + 3e / (2 (R − e)),   ν_β² = ν_0² + K_β / (I_β Ω²)   (Johnson, Helicopter Theory, ch. 9)
+    (articulated and teetering hubs: K_β = 0, ν_β = ν_0; hingeless: ν_β configured, held per rev).
     M_β(ψ) = Σ_r (r − e) F_z dr the aerodynamic moment about the hinge, ' = d/dψ. Solved for
     the periodic response by first-harmonic balance, β = β0 + β1c cos ψ + β1s sin ψ:
-    ν² β0 = M̄_β / (I_β Ω²), (ν² − 1) β1c = M_β,1c / (I_β Ω²), (ν² − 1) β1s = M_β,1s / (I_β Ω²),
+    ν² β0 = M̄_β / (I_β Ω²) + (ν² − ν_0²) β_p, (ν² − 1) β1c = M_β,1c / (I_β Ω²), (ν² − 1) β1s = M_β,1s / (I_β Ω²),
     solved together with λ0 by Newton's method; β, β̇ then enter U_P. I_β uses the operating
     density (the configured atmosphere) with the configured Lock number.
 
@@ -48,7 +50,9 @@ Pitch–flap coupling (δ3) and teetering hubs (docs/reference/loads.md)
 Hub moments (H frame, conventions' signs)
     M_x = s (B/2) K β1s (roll, + lifts the advancing side), M_y = −(B/2) K β1c (pitch, + nose
     up), K = I_β Ω² (ν_β² − 1): the blade that flaps up pulls the hub up on its side through
-    the hinge offset. With e = 0, K = 0 and the hub moment vanishes identically.
+    the hinge offset and the spring. With e = 0 and no spring, K = 0 and the hub moment vanishes
+    identically. The blade's mean root moment, I_β Ω² (ν_β² − 1) β0 − K_β β_p, cancels in the rotor's
+    hub moment; with e = 0 it is K_β (β0 − β_p), zero when the precone equals the coning.
 
 Trim (Fig. 4.3)
     The thesis pairs "M_x with θ1s and M_y with θ1c". With flapping dynamics the disk answers
@@ -85,7 +89,7 @@ import numpy as np
 import pandas as pd
 
 from nps.core.solvers import ConvergenceError, forward_difference_jacobian, limited_secant, newton_fd
-from nps.rotor.geometry import TEETERING, OperatingPoint, RotorGeometry
+from nps.rotor.geometry import TEETERING, OperatingPoint, RotorGeometry, hinge_flap_frequency_sq
 
 DISK_COLUMNS = (
     "psi_rad", "r_m", "dr_m", "chord_m", "thickness_m", "theta_rad", "beta_rad", "beta_dot_rad_s",
@@ -315,9 +319,18 @@ def _tip_loss(w, up, r, geometry: RotorGeometry) -> np.ndarray:
 
 
 def flap_frequency_sq(geometry: RotorGeometry) -> float:
-    """ν_β² = 1 + 3e / (2 (R − e)) for a uniform rigid blade hinged at e."""
-    e = geometry.hinge_offset_m
-    return 1.0 + 1.5 * e / (geometry.radius_m - e)
+    """ν_β² (per rev, squared): 1 + 3e / (2 (R − e)) for a uniform rigid blade hinged at e
+    (:func:`~nps.rotor.geometry.hinge_flap_frequency_sq`), the configured ν_β² of a hingeless hub."""
+    if geometry.flap_frequency_per_rev is not None:
+        return geometry.flap_frequency_per_rev**2
+    return hinge_flap_frequency_sq(geometry)
+
+
+def flap_spring_sq(geometry: RotorGeometry) -> float:
+    """K_β / (I_β Ω²) = ν_β² − ν_0² (per rev, squared): the hinge spring of a hingeless hub (0 without one)."""
+    if geometry.flap_frequency_per_rev is None:
+        return 0.0
+    return geometry.flap_frequency_per_rev**2 - hinge_flap_frequency_sq(geometry)
 
 
 def flap_inertia(geometry: RotorGeometry, density_kg_m3: float) -> float:
@@ -414,7 +427,8 @@ class _Disk:
         self.flap_arm = np.maximum(self.r - geometry.hinge_offset_m, 0.0)
         self.nu2 = flap_frequency_sq(geometry)
         self.pitch_flap = math.tan(geometry.delta3_rad)  # K_P = tan δ3: Δθ = −K_P β_h
-        self.flap_ref = geometry.precone_rad if geometry.hub == TEETERING else 0.0  # β_h = β − flap_ref
+        self.flap_ref = geometry.precone_rad  # β_h = β − precone, the flap from the unloaded blade (0: articulated)
+        self.precone_forcing = flap_spring_sq(geometry) * geometry.precone_rad  # (K_β/I_βΩ²) β_p, the spring's zero
         self.i_omega2 = flap_inertia(geometry, op.density_kg_m3) * omega**2
         self.norm_ct = op.density_kg_m3 * np.pi * R**2 * self.tip_speed**2
         self.blade_avg = geometry.n_blades / grid.n_psi
@@ -465,7 +479,7 @@ class _Disk:
         m1s = 2.0 / n * float(m_hinge @ self.sin[:, 0])
         res = np.array([
             x[0] - ct / (2.0 * math.hypot(self.mu, lam_total)),
-            self.nu2 * x[1] - m0,
+            self.nu2 * x[1] - m0 - self.precone_forcing,
             (self.nu2 - 1.0) * x[2] - m1c,
             (self.nu2 - 1.0) * x[3] - m1s,
         ])
@@ -481,7 +495,7 @@ class _StateSolver:
     def __init__(self, disk: _Disk, x0: np.ndarray, flapping: bool = True):
         self.disk, self.x, self.jac = disk, np.array(x0, dtype=float), None
         self.active = np.arange(4) if flapping and disk.prescribed_flap is None else np.arange(1)
-        if disk.g.hub == TEETERING:  # no coning degree of freedom: β0 is the precone
+        if disk.g.hub == TEETERING or self.active.size == 1:  # no coning freedom (teeter, rigid blades): β0 = precone
             self.x[1] = disk.g.precone_rad
             if self.active.size == 4:
                 self.active = np.array([0, 2, 3])

@@ -1,9 +1,12 @@
 """Rotor control modes: what is trimmed, and by which control, for one rotor.
 
-- ``collective`` (default): collective and cyclic pitch trimmed to the thrust and hub-moment
-  targets at the given rotor speed (:func:`nps.rotor.bet.trim_rotor`, thesis Fig. 4.3). With
+- ``collective`` (default, :func:`default_mode`): collective and cyclic pitch trimmed to the thrust and
+  hub-moment targets at the given rotor speed (:func:`nps.rotor.bet.trim_rotor`, thesis Fig. 4.3). With
   ``flapping: false`` (rigid blades, no cyclic: a propeller) only the collective is trimmed,
   to the thrust, and the hub moments are whatever the loads give (reported, not trimmed).
+- ``collective_only``: the collective alone trimmed to the thrust, cyclic zero, the flapping free
+  (a teetering rotor's teeter with its δ3 coupling) and the hub moments the answer: a tail rotor as
+  flown, which has no cyclic. The default of an antitorque rotor with a teetering hub.
 - ``rpm``: fixed blade pitch θ0 (``pitch_deg`` at 75 % radius), no cyclic; the rotor speed Ω
   is trimmed so that the thrust meets the target. The free stream is held: the advance
   ratios scale as μ = V/(ΩR), so μ Ω stays that of the operating point.
@@ -12,7 +15,7 @@
 
 ``flapping`` (default true) applies to every mode: false holds β ≡ 0.
 
-Both one-control trims (Ω → T, θ0 → T) are secant iterations on the thrust residual to
+The one-control trims (Ω → T, θ0 → T) are secant iterations on the thrust residual to
 |T − T*| ≤ tol_rel |T*|, the inflow (and flapping) re-solved at every evaluation. Ω starts
 at the operating point's speed and its T ∝ Ω² correction Ω √(T*/T); θ0 at 0.10 and 0.11 rad.
 """
@@ -28,11 +31,19 @@ import pandas as pd
 
 from nps.core.solvers import ConvergenceError, secant
 from nps.rotor.bet import MAX_CONTROL_RAD, Controls, DiskGrid, RotorTrim, TrimError, rotor_loads, trim_rotor
-from nps.rotor.geometry import OperatingPoint, RotorGeometry
+from nps.rotor.geometry import TEETERING, OperatingPoint, RotorGeometry
 
-MODES = ("collective", "rpm", "fixed")
+MODES = ("collective", "collective_only", "rpm", "fixed")
+TRIMMED_PITCH = ("collective", "collective_only")  # the modes whose pitch the trim sets (no pitch_deg)
 _MAX_ITERATIONS = 30  # load evaluations of a one-control secant trim (nps.core.solvers.secant)
 _THETA_START_RAD = 0.1
+
+
+def default_mode(rotor: Mapping) -> str:
+    """The control of a ``rotors[]`` entry that names none: ``collective_only`` for an antitorque rotor with a
+    teetering hub (a tail rotor has no cyclic: its teeter is free, δ3 acting), else ``collective``."""
+    teetering_tail = rotor.get("role") == "antitorque" and rotor.get("hub") == TEETERING
+    return "collective_only" if teetering_tail else "collective"
 
 
 @dataclass(frozen=True)
@@ -46,16 +57,17 @@ class RotorControl:
     def __post_init__(self):
         if self.mode not in MODES:
             raise ValueError(f"control: expected one of {MODES}, got {self.mode!r}")
-        if self.mode == "collective" and self.pitch_rad is not None:
-            raise ValueError("control pitch_deg: expected none with control 'collective' (the trim sets the pitch)")
-        if self.mode != "collective" and not (self.pitch_rad is not None and math.isfinite(self.pitch_rad)):
+        if self.mode in TRIMMED_PITCH and self.pitch_rad is not None:
+            raise ValueError(f"control pitch_deg: expected none with control '{self.mode}' (the trim sets the pitch)")
+        if self.mode not in TRIMMED_PITCH and not (self.pitch_rad is not None and math.isfinite(self.pitch_rad)):
             raise ValueError(f"control pitch_deg: required (a finite number) with control '{self.mode}'")
 
     @classmethod
     def from_config(cls, rotor: Mapping) -> "RotorControl":
-        """From a validated ``rotors[]`` entry: ``control``, ``pitch_deg``, ``flapping``."""
+        """From a validated ``rotors[]`` entry: ``control`` (:func:`default_mode` without one), ``pitch_deg``,
+        ``flapping``."""
         pitch = rotor.get("pitch_deg")
-        return cls(str(rotor.get("control", "collective")), None if pitch is None else math.radians(float(pitch)),
+        return cls(str(rotor.get("control", default_mode(rotor))), None if pitch is None else math.radians(float(pitch)),
                    bool(rotor.get("flapping", True)))
 
 
@@ -101,9 +113,9 @@ DENSITY_RANGE_KG_M3 = (0.05, 10.0)  # air at altitude to heavy-gas tunnels (nps.
 
 
 def likely_inputs(geometry: RotorGeometry, op: OperatingPoint) -> str:
-    """The inputs a failed rotor solution most likely comes from, for its message: rotor speed (with the tip
-    speed), chord, radius and density, each marked where it lies outside its usual range (a speed in rpm,
-    a chord in mm), and the settings to change."""
+    """The inputs a failed rotor solution most likely comes from, for its message (which names the rotor
+    already): rotor speed (with the tip speed), chord, radius and density, each marked where it lies outside
+    its usual range (a speed in rpm, a chord in mm), and the settings to change."""
     tip_speed, chord_ratio = op.omega_rad_s * geometry.radius_m, geometry.chord_m / geometry.radius_m
     notes = []
     if not TIP_SPEED_RANGE_MPS[0] <= tip_speed <= TIP_SPEED_RANGE_MPS[1]:
@@ -117,7 +129,7 @@ def likely_inputs(geometry: RotorGeometry, op: OperatingPoint) -> str:
         notes.append(f"density {op.density_kg_m3:.4g} kg/m³ is outside {DENSITY_RANGE_KG_M3[0]:g}-"
                      f"{DENSITY_RANGE_KG_M3[1]:g} kg/m³ (g/m³?)")
     found = "; ".join(notes) if notes else "each within its usual range: check the thrust target and the pitch"
-    return (f"inputs of rotor '{geometry.name}': omega_rad_s {op.omega_rad_s:.6g} rad/s, chord {geometry.chord_m:.4g} m, "
+    return (f"its inputs: omega_rad_s {op.omega_rad_s:.6g} rad/s, chord {geometry.chord_m:.4g} m, "
             f"radius {geometry.radius_m:.4g} m, density {op.density_kg_m3:.4g} kg/m³, thrust target {op.thrust_N:.6g} N: "
             f"{found}; settings to change: the rotor's omega_rad_s, chord_m, radius_m, pitch_deg or control, the "
             f"condition's atmosphere or thrust_N")
@@ -176,7 +188,7 @@ def _solve(geometry: RotorGeometry, op: OperatingPoint, grid: DiskGrid, control:
         omega, result = _secant(lambda w: loads(control.pitch_rad, at_rotor_speed(op, w)), op.omega_rad_s, first,
                                 op.omega_rad_s * math.sqrt(target / thrust0), target, tol, "rotor speed", geometry.name)
         return RotorSolution(result, at_rotor_speed(op, omega), control)
-    # collective without flapping: θ0 alone, from 0.1 rad and a 0.01 rad step
+    # collective without flapping, or collective_only: θ0 alone, from 0.1 rad and a 0.01 rad step
     _, result = _secant(_bounded_collective(geometry, op, lambda t: loads(t, op)), _THETA_START_RAD,
                         loads(_THETA_START_RAD, op), _THETA_START_RAD + 0.01, target, tol, "collective", geometry.name)
     return RotorSolution(result, op, control)

@@ -8,6 +8,7 @@ trim artifact (``trim.parquet``, one row per rotor). Frames and signs: docs/refe
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 from typing import Mapping
 
@@ -16,12 +17,22 @@ import numpy as np
 from nps.rotor.airfoils import Airfoil, LinearAirfoil, read_airfoil, section_coefficients
 from nps.rotor.blade import BladeError, BladeTable, blade_from_config
 
-ARTICULATED, TEETERING = "articulated", "teetering"
-HUBS = (ARTICULATED, TEETERING)
+ARTICULATED, TEETERING, HINGELESS = "articulated", "teetering", "hingeless"
+HUBS = (ARTICULATED, TEETERING, HINGELESS)
+MAX_FLAP_FREQUENCY_PER_REV = 3.0  # ν_β of a rigid flapping blade: hingeless rotors lie near 1.05–1.2/rev
+
+
+def without_rotor_label(where: str, message: str) -> str:
+    """``message`` without its leading ``rotor '<name>': `` when ``where`` (the place a caller puts before it)
+    already ends with that rotor's name (``rotor 'main'``, ``rotors[0] 'main'``): each message names a rotor once."""
+    label = re.match(r"rotor '([^']*)': ", message)
+    named = label and re.search(rf"(rotor|\]) '{re.escape(label.group(1))}'$", where)
+    return message[label.end():] if named else message
 
 
 class HubError(BladeError):
-    """The hub fields of a rotor (``hub``, ``precone_deg``, ``delta3_deg``) do not describe a hub NPS models
+    """The hub fields of a rotor (``hub``, ``precone_deg``, ``delta3_deg``, ``flap_frequency_per_rev``) do not
+    describe a hub NPS models
     (a :class:`~nps.rotor.blade.BladeError`, so configuration loading reports it with the file and rotor)."""
 
 
@@ -51,12 +62,15 @@ class RotorGeometry:
     of the BVI loads) and whose rate enters U_P (:mod:`nps.rotor.bet`, the trim then meets the hub
     moments with the aerodynamic first-harmonic flap moment).
 
-    Hub and pitch–flap coupling (docs/reference/loads.md, "Teetering rotors", "Pitch–flap coupling (δ3)"):
-    ``hub`` is ``articulated`` (every blade flaps on its own hinge at ``hinge_offset_m``, coning free) or
-    ``teetering`` (two blades in one piece on a central teeter hinge: n_blades 2, hinge offset 0; the
-    blades flap equal and opposite about the fixed coning ``precone_rad``, no hub moment).
-    ``delta3_rad`` δ3 adds θ = −tan δ3 · β_h to the pitch, β_h the flap angle about the hinge (β for an
-    articulated blade, the teeter angle β − precone for a teetering rotor).
+    Hub and pitch–flap coupling (docs/reference/loads.md, "Hingeless rotors", "Teetering rotors",
+    "Pitch–flap coupling (δ3)"): ``hub`` is ``articulated`` (every blade flaps on its own hinge at
+    ``hinge_offset_m``, coning free), ``hingeless`` (every blade an equivalent rigid blade hinged at
+    ``hinge_offset_m`` with a flap spring whose zero is the built-in coning ``precone_rad``; the rotating
+    flap frequency ``flap_frequency_per_rev`` ν_β (per rev) sets the spring, none: no spring, the offset
+    alone) or ``teetering`` (two blades in one piece on a central teeter hinge: n_blades 2, hinge offset 0;
+    the blades flap equal and opposite about the fixed coning ``precone_rad``, no hub moment).
+    ``delta3_rad`` δ3 adds θ = −tan δ3 · β_h to the pitch, β_h = β − precone the flap angle from the
+    blade's unloaded position (β for an articulated blade, the teeter angle for a teetering rotor).
     """
 
     name: str
@@ -78,6 +92,7 @@ class RotorGeometry:
     hub: str = ARTICULATED
     delta3_rad: float = 0.0
     precone_rad: float = 0.0
+    flap_frequency_per_rev: float | None = None
 
     def __post_init__(self):
         check_hub(self)
@@ -191,7 +206,16 @@ class RotorGeometry:
             hub=str(rotor.get("hub", ARTICULATED)),
             delta3_rad=math.radians(float(rotor.get("delta3_deg", 0.0))),
             precone_rad=math.radians(float(rotor.get("precone_deg", 0.0))),
+            flap_frequency_per_rev=(None if rotor.get("flap_frequency_per_rev") is None
+                                    else float(rotor["flap_frequency_per_rev"])),
         )
+
+
+def hinge_flap_frequency_sq(geometry: RotorGeometry) -> float:
+    """ν_0² = 1 + 3e / (2 (R − e)): the rotating flap frequency (per rev, squared) of a uniform rigid blade
+    hinged at e with no spring (Johnson, *Helicopter Theory*, 1980, ch. 9, flap motion with hinge offset)."""
+    e = geometry.hinge_offset_m
+    return 1.0 + 1.5 * e / (geometry.radius_m - e)
 
 
 def check_hub(geometry: RotorGeometry) -> None:
@@ -201,6 +225,10 @@ def check_hub(geometry: RotorGeometry) -> None:
         raise HubError(f"{where}: hub: expected one of {list(HUBS)}, got {g.hub!r}")
     if not (math.isfinite(g.delta3_rad) and abs(g.delta3_rad) < math.radians(89.0)):
         raise HubError(f"{where}: delta3_deg: expected a finite angle within ±89°, got {math.degrees(g.delta3_rad)!r}")
+    if g.flap_frequency_per_rev is not None and g.hub != HINGELESS:
+        raise HubError(f"{where}: flap_frequency_per_rev: applies to a hingeless hub only (hub: hingeless; an "
+                       f"articulated blade's follows from hinge_offset_m), got {g.flap_frequency_per_rev!r} with "
+                       f"hub: {g.hub}")
     if g.hub == TEETERING:
         if g.n_blades != 2:
             raise HubError(f"{where}: n_blades: a teetering hub (hub: teetering) carries two blades in one piece, "
@@ -208,9 +236,34 @@ def check_hub(geometry: RotorGeometry) -> None:
         if g.hinge_offset_m != 0.0:
             raise HubError(f"{where}: hinge_offset_m: a teetering hub flaps about the rotor axis, expected 0, "
                            f"got {g.hinge_offset_m}")
+    elif g.hub == HINGELESS:
+        _check_hingeless(g, where)
     elif g.precone_rad != 0.0:
-        raise HubError(f"{where}: precone_deg: applies to a teetering hub only (an articulated blade cones freely "
-                       f"about its hinge), got {math.degrees(g.precone_rad)!r} with hub: {g.hub}")
+        raise HubError(f"{where}: precone_deg: applies to a teetering or hingeless hub only (an articulated blade "
+                       f"cones freely about its hinge), got {math.degrees(g.precone_rad)!r} with hub: {g.hub}")
+
+
+def _check_hingeless(g: RotorGeometry, where: str) -> None:
+    """A hingeless hub's stiffness: ν_β within [ν_0, MAX_FLAP_FREQUENCY_PER_REV] (a spring ≥ 0), or an offset
+    e > 0 without ν_β; a precone only with a spring (its zero)."""
+    nu = g.flap_frequency_per_rev
+    if nu is None:
+        if not g.hinge_offset_m > 0.0:
+            raise HubError(f"{where}: flap_frequency_per_rev: a hingeless hub (hub: hingeless) needs its flap "
+                           f"stiffness: expected flap_frequency_per_rev (ν_β > 1 per rev) or an equivalent "
+                           f"hinge_offset_m > 0, got neither")
+        if g.precone_rad != 0.0:
+            raise HubError(f"{where}: precone_deg: the precone of a hingeless hub is the zero of its flap spring, "
+                           f"and without flap_frequency_per_rev the blade has none (the offset alone): give "
+                           f"flap_frequency_per_rev, got precone_deg {math.degrees(g.precone_rad)!r}")
+        return
+    if not (0.0 <= g.hinge_offset_m < g.radius_m):
+        return  # check_geometry names hinge_offset_m
+    low = math.sqrt(hinge_flap_frequency_sq(g))
+    if not (math.isfinite(nu) and low <= nu <= MAX_FLAP_FREQUENCY_PER_REV):
+        raise HubError(f"{where}: flap_frequency_per_rev: expected within [{low:.4g}, {MAX_FLAP_FREQUENCY_PER_REV:g}] "
+                       f"(at least the frequency of the hinge offset alone, {low:.4g}/rev with hinge_offset_m "
+                       f"{g.hinge_offset_m}: a spring of stiffness >= 0), got {nu!r}")
 
 
 def _fourier_series(harmonics, psi: np.ndarray) -> np.ndarray:

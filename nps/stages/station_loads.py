@@ -4,11 +4,15 @@
 inputs: ``disks`` (directory of ``{rotor}.parquet`` disk tables: the loads stage's, or the wake stage's BVI
 loads), ``trim`` (trim artifact: each rotor's radius, density and speed of sound). outputs: ``table`` (one
 table, :data:`nps.rotor.station_loads.STATION_COLUMNS`: rotor, r_over_R, psi_rad, cn, m2cn). params:
-``stations`` (r/R list), optional ``rotors`` (default: every rotor of the trim), ``aircraft``, ``segment``,
-``variant`` (metadata and provenance). Every rotor is computed before the table is written.
+``stations`` (r/R list of every rotor, or ``{rotor: r/R list}`` per rotor, e.g. a rig's rotors[].stations_r_over_R,
+:func:`nps.rig.case.station_params`), optional ``rotors`` (default: every rotor of the trim, or of the mapping),
+``aircraft``, ``segment``, ``variant`` (metadata and provenance). Every rotor is computed before the table is
+written.
 """
 
 from __future__ import annotations
+
+from typing import Mapping
 
 import pandas as pd
 
@@ -21,10 +25,16 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
     same = {key: params.get(key) for key in ("aircraft", "segment")}
     check_provenance(inputs["trim"], {"stage": TRIM_STAGES, **same})
     trim = read_table(inputs["trim"], required=TRIM_COLUMNS, nonempty=True)
-    rotors = list(params.get("rotors") or trim["rotor"])
-    stations = [float(s) for s in params["stations"]]
-    if not stations:
+    spec = params["stations"]
+    per_rotor = isinstance(spec, Mapping)
+    rotors = list(params.get("rotors") or (spec if per_rotor else trim["rotor"]))
+    if per_rotor and set(rotors) - set(spec):
+        raise ValueError(f"station_loads: params stations: expected the stations of every rotor {rotors}, got none for "
+                         f"{sorted(set(rotors) - set(spec))}")
+    wanted = {name: [float(s) for s in (spec[name] if per_rotor else spec)] for name in rotors}
+    if not all(wanted.values()):
         raise ValueError("station_loads: params stations: expected at least one station r/R")
+    stations = wanted if per_rotor else wanted[rotors[0]]
     parts = []
     for name in rotors:
         path = rotor_path(inputs["disks"], name)
@@ -32,7 +42,7 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
         row = trim_row(trim, name, str(inputs["trim"]))
         disk = read_table(path, required=DISK_COLUMNS, nonempty=True)
         parts.append(station_loads(disk, name, float(row["radius_m"]), float(row["density_kg_m3"]),
-                                   float(row["speed_of_sound_mps"]), stations, what=str(path)))
+                                   float(row["speed_of_sound_mps"]), wanted[name], what=str(path)))
     table = pd.concat(parts, ignore_index=True)
     meta = {**{k: v for k, v in same.items() if v}, "variant": params.get("variant", ""), "stations_r_over_R": stations,
             "inputs": [str(rotor_path(inputs["disks"], n)) for n in rotors] + [str(inputs["trim"])]}

@@ -55,6 +55,19 @@ def _station_outside(rig):
     rig["stations_r_over_R"] = [0.99]
 
 
+def _own_station_outside(rig):
+    rig["rotors"][1]["stations_r_over_R"] = [0.5, 0.99]
+
+
+def _carpet_loads_only(rig):
+    rig["carpet"], rig["loads_only"] = True, True
+
+
+def _collective_only_coupled(rig):
+    rig["rotors"][1].update(control="collective_only", thrust_N=60.0)
+    del rig["rotors"][1]["pitch_deg"]
+
+
 CASES = [
     ("both_forms", _both, "rotor, rotors: expected exactly one of rotor (one rotor) and rotors (several), got both"),
     ("duplicate_names", _duplicate, "rotors[1].name: rotor name 'main' is also rotors[0]'s"),
@@ -64,7 +77,13 @@ CASES = [
     ("thrust_with_fixed", _thrust_with_fixed, "rotors[1] 'tail'.thrust_N: got 50.0, but control 'fixed'"),
     ("rotor_field_in_condition", _rotor_field_in_condition, "condition.rpm: with rotors, each rotor gives its own rpm"),
     ("rpm_coupled", _rpm_coupled, "rotors[1] 'tail'.control: 'rpm' is not available for a rotor coupled"),
-    ("station_outside", _station_outside, "stations_r_over_R[0]: r/R 0.99 outside rotor 'main''s disk stations"),
+    ("station_outside", _station_outside, "stations_r_over_R[0]: r/R 0.99 outside the disk stations [0.2333, 0.9667] "
+                                          "of rotor 'main' (resolution.n_r 12)"),
+    ("own_station_outside", _own_station_outside, "rotors[1] 'tail'.stations_r_over_R[1]: r/R 0.99 outside the disk "
+                                                  "stations [0.2333, 0.9667] of the rotor "),
+    ("carpet_loads_only", _carpet_loads_only, "carpet: true with loads_only: the carpet is drawn from the acoustics"),
+    ("collective_only_coupled", _collective_only_coupled, "rotors[1] 'tail'.control: 'collective_only' is not "
+                                                          "available for a rotor coupled"),
 ]
 
 

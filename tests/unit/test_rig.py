@@ -158,6 +158,20 @@ def test_rotor_command_reproduces_closed_form_hover(tmp_path, capsys):
     assert "thrust" in capsys.readouterr().out
 
 
+def test_rotor_command_with_loads_only_writes_the_loads_and_no_acoustics(tmp_path, capsys):
+    """--loads-only (the rig's loads_only): set-up and loads, the same trim as with the acoustics; no acoustics
+    directory, no levels."""
+    args = ["--rotor-file", str(write_rig(tmp_path).parent / "prop.yaml"), "--rpm", "3000", "--control", "fixed",
+            "--pitch-deg", "8", "--mic", "5", "0", "0", "--n-psi", "36", "--n-r", "20", "--samples-per-rev", "128"]
+    assert rotor_command([*args, "--loads-only", "--out-dir", str(tmp_path / "loads_only")]) == 0
+    assert "loads only (loads_only): no acoustics" in capsys.readouterr().out
+    assert rotor_command([*args, "--out-dir", str(tmp_path / "full")]) == 0
+    assert not (tmp_path / "loads_only/acoustics").exists() and not (tmp_path / "loads_only/levels.csv").exists()
+    assert (tmp_path / "full/levels.csv").exists()
+    assert read_table(tmp_path / "loads_only/trim.parquet").equals(read_table(tmp_path / "full/trim.parquet"))
+    assert read_table(tmp_path / "loads_only/loads/prop.parquet").equals(read_table(tmp_path / "full/loads/prop.parquet"))
+
+
 def test_bundled_rigs_validate():
     rigs = {p.stem: load_rig(p) for p in sorted((REPO / "config/rigs").glob("*.yaml"))}
     hart_ii = {"hart_ii_bl", "hart_ii_bl_measured", "hart_ii_mn_measured", "hart_ii_mv_measured"}

@@ -188,3 +188,16 @@ def test_station_loads_stage_and_command(tmp_path):
     assert nps_main(["station-loads", "--disks", str(tmp_path / "loads"), "--trim", str(tmp_path / "trim.parquet"),
                      "--stations", "0.75", "0.87", "--out", str(tmp_path / "cmd.parquet")]) == 0
     assert read_table(tmp_path / "cmd.parquet").equals(table)
+    # per-rotor stations (a rig's rotors[].stations_r_over_R): each rotor at its own, the same rows as the list form
+    station_stage.run({"disks": str(tmp_path / "loads"), "trim": str(tmp_path / "trim.parquet")},
+                      {"table": str(tmp_path / "own.parquet")},
+                      {"stations": {"main": [0.87], "tail": [0.75, 0.87]}, **where, "variant": "base"})
+    own = read_table(tmp_path / "own.parquet")
+    assert sorted(set(zip(own["rotor"], own["r_over_R"]))) == [("main", 0.87), ("tail", 0.75), ("tail", 0.87)]
+    same = table[~((table["rotor"] == "main") & (table["r_over_R"] == 0.75))].reset_index(drop=True)
+    assert own.equals(same)
+    with pytest.raises(ValueError, match=r"params stations: expected the stations of every rotor \['main', 'tail'\], "
+                                         r"got none for \['tail'\]"):
+        station_stage.run({"disks": str(tmp_path / "loads"), "trim": str(tmp_path / "trim.parquet")},
+                          {"table": str(tmp_path / "bad.parquet")},
+                          {"stations": {"main": [0.87]}, "rotors": ["main", "tail"], **where, "variant": "base"})

@@ -97,7 +97,7 @@ def test_alpha_range_not_covering_the_operating_point_names_file_and_field(tree)
     ({"pitch_deg": None}, "rotors[0].pitch_deg: required with control 'rpm'"),
     ({"chord_m": 0.02}, "rotors[0].chord_m: expected no linear-blade field next to a blade table"),
     ({"airfoil": {"table": "../airfoils/naca0012.c81", "cd0": 0.01}}, "rotors[0].airfoil.cd0: expected no linear-model parameter"),
-    ({"control": "throttle"}, "rotors[0].control: expected one of ['collective', 'rpm', 'fixed']"),
+    ({"control": "throttle"}, "rotors[0].control: expected one of ['collective', 'collective_only', 'rpm', 'fixed']"),
     ({"blade": {"table": "../blades/none.csv"}}, "rotors[0].blade.table: file not found"),
     ({"blade": None}, "rotors[0].chord_m: required field is missing"),
     ({"blade": {"table": "../blades/prop.csv"}, "airfoils": {}, "airfoil": {"extrapolation": "viterna"}},

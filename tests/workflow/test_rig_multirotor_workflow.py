@@ -48,6 +48,26 @@ def test_dry_run_lists_the_station_loads_jobs(tmp_path):
     assert other.returncode == 0 and "station_loads" not in other.stdout, other.stderr[-2000:]
 
 
+def test_loads_only_rig_stops_before_the_acoustics_with_per_rotor_stations(tmp_path):
+    """loads_only: the dry run lists the set-up, loads, wake (BVI loads) and station loads, no acoustics or metrics;
+    the tail rotor's own stations_r_over_R go to the station_loads jobs' params, the main rotor keeps the rig's."""
+    from nps.app.config import load_rig
+    from nps.rig.case import station_params
+
+    root = _work(tmp_path)
+    path = root / "config" / "rigs" / f"{RIG}.yaml"
+    text = path.read_text()
+    old = "    pitch_deg: 6.0\n"
+    assert old in text
+    path.write_text(text.replace(old, old + "    stations_r_over_R: [0.5, 0.7]\n") + "loads_only: true\n")
+    dry = _snakemake(root, "-n", RIG)
+    assert dry.returncode == 0, dry.stderr[-4000:]
+    jobs = re.findall(r"^(?:localrule|rule) (\w+):", dry.stdout, flags=re.M)
+    assert sorted(jobs) == sorted(["rig", "loads", "wake", "station_loads", "station_loads", RIG])
+    assert station_params(load_rig(path)) == {"stations": {"main": [0.75, 0.87], "tail": [0.5, 0.7]},
+                                              "rotors": ["main", "tail"]}
+
+
 @pytest.mark.slow  # ~80 s: the main + tail rig through snakemake; its stages run in tests/unit/test_rig_multirotor.py
 def test_main_tail_rig_end_to_end(tmp_path):
     root = _work(tmp_path)

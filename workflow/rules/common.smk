@@ -9,6 +9,7 @@ from nps.app.config import ConfigError, load_campaign, load_path, load_rig
 from nps.app.designs import load_study
 from nps.app.plan import CaseConfig, metrics_reads_disks, stage_params
 from nps.rig import RIG_AIRCRAFT
+from nps.rig.case import station_params
 from nps.stages.code import stage_digest
 from nps.noise.metrics import rotor_solidities
 import nps.app.resources as nps_resources
@@ -293,11 +294,15 @@ def rig_variant(rig):
 
 def rig_targets(rig):
     """A rig's products: its microphones' metrics and, where asked, the carpet and the loads at its stations
-    (stations_r_over_R: of the trimmed loads, and of the BVI loads where models.bvi)."""
+    (stations_r_over_R of the rig or its rotors: of the trimmed loads, and of the BVI loads where models.bvi).
+    With loads_only: the loads (and the wake's BVI loads where models.bvi) and the station loads, no acoustics."""
     base = f"{RESULTS}/{RIG_AIRCRAFT}/{rig}"
     stations = [f"{base}/station_loads/{v}.parquet" for v in dict.fromkeys(("base", rig_variant(rig)))]
+    stations = stations if RIGS[rig]["rotor_stations"] else []
+    if RIGS[rig]["loads_only"]:
+        return [f"{base}/loads"] + ([f"{base}/bvi"] if RIGS[rig]["models"]["bvi"] else []) + stations
     return ([f"{base}/metrics/microphones_{rig_variant(rig)}.parquet"] + ([f"{base}/carpet.png"] if RIGS[rig]["carpet"] else [])
-            + (stations if "stations_r_over_R" in RIGS[rig] else []))
+            + stations)
 
 
 # ---- resources: mem_mb of the jobs whose arrays scale with the resolution (nps.app.resources) ----

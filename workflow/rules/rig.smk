@@ -3,7 +3,8 @@
 # common.smk): the set-up here (stage rig) writes the trim row and the microphone table (observer set
 # "microphones"); the study's loads, wake (+ BVI loads) where models.bvi, acoustics and metrics rules follow,
 # with the rig's own settings; the BVISPL carpet of the plane microphone groups where `carpet`, and the loads at
-# the radial stations (station_loads) where `stations_r_over_R`. A rig may hold several rotors (rotors:).
+# the radial stations (station_loads) where `stations_r_over_R`. A rig may hold several rotors (rotors:). With
+# `loads_only` a rig's targets stop before the acoustics (set-up, loads, wake and BVI loads, station loads).
 # Targets: `snakemake -j2 rigs` (every rig), or one rig by its name (`snakemake -j2 hart_ii_bl`).
 
 # a rig's trim and microphones are the set-up's, not the aircraft trim's or an observer set's
@@ -59,8 +60,9 @@ rule carpet:
         STAGE_SCRIPT
 
 
-# C_n and M^2 C_n against azimuth at the rig's stations_r_over_R, every rotor (nps.stages.station_loads), from the
-# trimmed loads (base) or the loads with the wake's induced velocity (bvi)
+# C_n and M^2 C_n against azimuth at the rig's stations_r_over_R, every rotor (or each rotor's own
+# rotors[].stations_r_over_R: nps.rig.case.station_params; nps.stages.station_loads), from the trimmed loads (base)
+# or the loads with the wake's induced velocity (bvi)
 rule station_loads:
     input:
         disks=variant_disks,
@@ -70,8 +72,8 @@ rule station_loads:
     wildcard_constraints:
         aircraft=RIG_AIRCRAFT,
     params:
-        stations=lambda wildcards: RIGS[wildcards.segment]["stations_r_over_R"],
-        rotors=job_rotors,
+        stations=lambda wildcards: station_params(RIGS[wildcards.segment])["stations"],
+        rotors=lambda wildcards: station_params(RIGS[wildcards.segment])["rotors"],
         code=code("station_loads"),
     log:
         log_path("station_loads", "{aircraft}/{segment}_{variant}"),
