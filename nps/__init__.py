@@ -1,7 +1,7 @@
 """NPS: noise prediction system for the conceptual design of rotorcraft.
 
-Frames, units and artifact columns are defined in ``docs/reference/conventions.md``. ``nps.Case`` and
-``nps.Study`` (the notebook API, :mod:`nps.api`) are imported on first use, so that the stage jobs, which
+Frames, units and artifact columns are defined in ``docs/reference/conventions.md``. ``nps.Case``,
+``nps.Study`` and ``nps.FlightPathCase`` (the notebook API, :mod:`nps.api`) are imported on first use, so that the stage jobs, which
 never use them, neither load them nor depend on them (their code digests, nps.stages.code).
 """
 
@@ -9,7 +9,7 @@ import importlib
 
 __version__ = "0.1.0"
 
-_API = ("Case", "CaseResult", "Study", "StudyResult")
+_API = ("Case", "CaseResult", "FlightPathCase", "PathResult", "Study", "StudyResult")
 
 
 def __getattr__(name: str):

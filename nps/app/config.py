@@ -656,7 +656,8 @@ class Campaign:
     segments: list[str]
     written: dict
     # flight paths (:meth:`with_paths`): path name → validated path; path name → its trim-state keys (unique, in
-    # order of first visit); state key → {"aircraft": {aircraft: speeds entry}} (equal states of paths share a key)
+    # order of first visit); state key → {"aircraft": {aircraft: speeds entry}, "advance_ratio": μ} (equal states
+    # of paths share a key)
     paths: dict[str, dict] = field(default_factory=dict)
     path_keys: dict[str, list[str]] = field(default_factory=dict)
     path_states: dict[str, dict] = field(default_factory=dict)
@@ -685,8 +686,10 @@ class Campaign:
             aircraft = self.aircraft[path["aircraft"]]
             plan = plan_path(aircraft, path, self.config["paths"], atmosphere)
             entries = plan.speeds([r["name"] for r in aircraft["rotors"]])
+            advance = dict(zip(reversed(plan.keys), reversed(plan.states.values[:, 0])))  # first visit's μ
             for key, speeds in entries.items():
-                states.setdefault(key, {"aircraft": {}})["aircraft"][path["aircraft"]] = speeds
+                state = states.setdefault(key, {"aircraft": {}, "advance_ratio": float(advance[key])})
+                state["aircraft"][path["aircraft"]] = speeds
             keys[name] = list(entries)
         return replace(self, paths=dict(paths), path_keys=keys, path_states=states)
 
@@ -720,10 +723,12 @@ class Campaign:
 
         Outside the BVI segments only "base"; in a BVI segment "bvi", preceded by "base" where the
         comparison without BVI is asked for (``models.without_bvi_segments``, default every BVI segment).
-        A path state (:meth:`with_paths`) radiates "bvi" where ``models.bvi`` is on, else "base".
+        A path state (:meth:`with_paths`) radiates "bvi" where ``models.bvi`` is on and its advance ratio is at
+        least ``paths.bvi_min_advance_ratio``, else "base".
         """
-        if segment in self.path_states:  # a path state: the BVI loads wherever they are computed, no comparison
-            return ["bvi"] if self.config["models"]["bvi"] else ["base"]
+        if segment in self.path_states:  # a path state: the BVI loads in forward flight, no comparison
+            fast = self.path_states[segment]["advance_ratio"] >= self.config["paths"]["bvi_min_advance_ratio"]
+            return ["bvi"] if self.config["models"]["bvi"] and fast else ["base"]
         bvi = self.bvi_segments()
         if segment not in bvi:
             return ["base"]

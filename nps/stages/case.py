@@ -68,6 +68,9 @@ OUTPUTS = {
                       "pnlt_figure": "pnlt.png", "table_figure": "certification.png"},
     "footprint": {"grid": "grid.parquet", "microphones": "microphones.parquet", "histories": "histories.parquet",
                   "areas": "areas.parquet", "areas_csv": "areas.csv", "sel_figure": "sel.png", "lamax_figure": "lamax.png"},
+    "path": {"history": "path_history.parquet", "states": "path_states.parquet"},
+    "path_footprint": {"grid": "grid.parquet", "microphones": "microphones.parquet", "histories": "histories.parquet",
+                       "areas": "areas.parquet", "plan_figure": "plan.png", "history_figure": "histories.png"},
 }
 
 
@@ -218,6 +221,24 @@ def mission_product(stage: str, campaign: Campaign, aircraft: str, cache: StageC
         hemispheres[f"hemisphere_{name}"] = (chain["source_hemisphere"], "hemisphere")
     case = CaseConfig.from_campaign(campaign, aircraft)
     return cache.run(stage, hemispheres, {**stage_params(stage, case), "aircraft": aircraft})
+
+
+def path_product(campaign: Campaign, path: str, cache: StageCache) -> dict[str, Artifact]:
+    """The noise of ``path`` (a path of ``campaign.paths``, :meth:`nps.app.config.Campaign.with_paths`): the
+    ``path`` stage, every state's chain with its source hemisphere (:func:`run_chain`, the state key as the
+    segment) and ``path_footprint``, with the workflow's params (rules path and path_footprint)."""
+    spec = campaign.paths[path]
+    aircraft = spec["aircraft"]
+    case = CaseConfig.from_campaign(campaign, aircraft)
+    named = {"aircraft": aircraft, "path_config": spec, "path": path}
+    history = cache.run("path", {}, {**stage_params("path", case), **named})
+    hemispheres = {}
+    for key in campaign.path_keys[path]:
+        chain = run_chain(campaign, aircraft, key, cache, [], source_set=True)
+        hemispheres[f"hemisphere_{key}"] = (chain["source_hemisphere"], "hemisphere")
+    footprint = cache.run("path_footprint", {"history": (history, "history"), **hemispheres},
+                          {**stage_params("path_footprint", case), **named})
+    return {"path": history, "footprint": footprint}
 
 
 def _logged(cache: StageCache, start: int, prefix: str) -> tuple[dict, list[str]]:
