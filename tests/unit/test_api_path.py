@@ -30,7 +30,9 @@ def files(tmp_path):
     return tmp_path
 
 
+@pytest.mark.slow
 def test_a_path_runs_and_is_reused(files):
+    """End to end (~10 s with compiled kernels, ~55 s compiling them): slow."""
     case = FlightPathCase.from_files(REPO / "config/aircraft/helicopter.yaml", files / "short_deceleration.yaml",
                                      files / "config.yaml", REPO / "config/missions/demo.yaml", cache_dir=files / "cache",
                                      resolution=RESOLUTION)

@@ -50,7 +50,8 @@ def test_decelerating_level_flight_has_the_bvi_of_the_equivalent_descent(tmp_pat
         "level": {"forward_speed_mps": SPEED_MPS, "climb_speed_mps": 0.0, "rotor_omega_scale": rotors},
     }
     campaign = dataclasses.replace(campaign, config=config,
-                                   path_states={k: {"aircraft": {"helicopter": v}} for k, v in states.items()})
+                                   path_states={k: {"aircraft": {"helicopter": v}, "advance_ratio": 0.12}
+                                                for k, v in states.items()})
     level = {name: _bvispl_max(campaign, name, tmp_path) for name in states}
     assert abs(level["decelerating"] - level["descent"]) < 0.5, level
     assert abs(level["decelerating"] - level["level"]) > 2.0, level
