@@ -73,12 +73,11 @@ def path_axes(heading_rad, flight_path_rad) -> np.ndarray:
 
 
 def hemisphere_frames(samples: PathSamples) -> np.ndarray:
-    """(n − 1, 2, 3, 3) rotations E → the hemisphere frames of each chord's state and neighbour: C Aᵀ with A the
-    path axes of the chord's first sample and C the canonical ones at its γ_e (module doc)."""
+    """(n − 1, 3, 3) rotations E → the hemisphere frame of each chord (its state's and neighbour's): C Aᵀ with A
+    the path axes of the chord's first sample and C the canonical ones at its γ_e (module doc)."""
     actual = path_axes(samples.heading_rad[:-1], samples.flight_path_rad[:-1])
     canonical = path_axes(np.zeros(actual.shape[0]), samples.effective_flight_path_rad[:-1])
-    frame = np.einsum("kij,klj->kil", canonical, actual)
-    return np.stack([frame, frame], axis=1)
+    return np.einsum("kij,klj->kil", canonical, actual)
 
 
 def path_trajectory(samples: PathSamples, n_states: int, delta_t_k: float, relative_humidity_pct: float,

@@ -147,8 +147,8 @@ class Trajectory:
     radiates hemisphere ``hemisphere_index[k]`` and absorbs with ``atmospheres[k]``.
 
     Optional, for paths that turn and change state (nps.mission.path_noise): ``hemisphere_frames``
-    (n_seg, 2, 3, 3), for segment k the rotations from E to the frames of its hemisphere and of its
-    blended hemisphere (a ray leaving in direction n, E, leaves in direction F n of the hemisphere;
+    (n_seg, 3, 3), for segment k the rotation F from E to the frame of its hemispheres (a ray leaving in
+    direction n, E, leaves in direction F n of the hemisphere;
     None: the identity, the straight track along +x of a hemisphere computed for this very flight;
     :func:`turn_about_z` for a heading); ``next_hemisphere_index`` and ``hemisphere_weight`` (n_seg,)
     make segment k radiate the levels (1 − w_k) L[h_k] + w_k L[h'_k] (dB, each hemisphere read at its
@@ -177,10 +177,10 @@ class Trajectory:
             raise PropagationError(f"trajectory: need one hemisphere index and one atmosphere per segment ({n})")
         if self.hemisphere_frames is not None:
             f = np.asarray(self.hemisphere_frames, float)
-            gram = np.einsum("...ji,...jk->...ik", f, f) if f.shape == (n, 2, 3, 3) else None
+            gram = np.einsum("...ji,...jk->...ik", f, f) if f.shape == (n, 3, 3) else None
             if gram is None or not np.all(np.isfinite(f)) or np.abs(gram - np.eye(3)).max() > 1e-9:
-                raise PropagationError(f"trajectory: hemisphere_frames must hold two rotation matrices (3 x 3, "
-                                       f"orthonormal) per segment, shape ({n}, 2, 3, 3)")
+                raise PropagationError(f"trajectory: hemisphere_frames must hold one rotation matrix (3 x 3, "
+                                       f"orthonormal) per segment, shape ({n}, 3, 3)")
         if (self.next_hemisphere_index is None) != (self.hemisphere_weight is None):
             raise PropagationError("trajectory: next_hemisphere_index and hemisphere_weight go together")
         if self.hemisphere_weight is not None:
@@ -319,17 +319,9 @@ def _map_weights(h_el, n_az, h_daz, m0, m1, m2, mlen):
 
 
 @kernel(inline=True)
-def _hemisphere_reading(h_el, n_az, h_daz, h_radius, h_mach, h, frames, turned, k, slot, n0, n1, n2, re):
-    """Where hemisphere h hears the ray leaving in direction n (E) at emission distance r_e: n in the hemisphere's
-    frame (``frames[k, slot]`` when ``turned[k]``), the map weights of d = (n − M_h)/|n − M_h|
-    (:func:`_map_weights`) and the spreading 20 log10(r_e |n − M_h| / r_h)."""
-    if turned[k]:
-        f = frames[k, slot]
-        t0 = f[0, 0] * n0 + f[0, 1] * n1 + f[0, 2] * n2
-        t1 = f[1, 0] * n0 + f[1, 1] * n1 + f[1, 2] * n2
-        n2 = f[2, 0] * n0 + f[2, 1] * n1 + f[2, 2] * n2
-        n0 = t0
-        n1 = t1
+def _hemisphere_reading(h_el, n_az, h_daz, h_radius, h_mach, h, n0, n1, n2, re):
+    """Where hemisphere h hears the ray leaving in direction n (its frame) at emission distance r_e: the map
+    weights of d = (n − M_h)/|n − M_h| (:func:`_map_weights`) and the spreading 20 log10(r_e |n − M_h| / r_h)."""
     m0 = n0 - h_mach[h, 0]
     m1 = n1 - h_mach[h, 1]
     m2 = n2 - h_mach[h, 2]
@@ -439,7 +431,7 @@ def _propagate_kernel(rec, times, c, knot_t, knot_p, vel, hemi_of_seg, hemi_next
     """Per receiver (parallel) and reception time: band levels (1), A-weighted level, segment.
 
     ``hemi_of_seg``, ``hemi_next``, ``hemi_weight`` (n_seg,) the segments' hemispheres and blend weights,
-    ``frames`` (n_seg, 2, 3, 3) the rotations E → hemisphere frames, applied where ``turned`` (n_seg,) (:class:`Trajectory`);
+    ``frames`` (n_seg, 3, 3) the rotations E → hemisphere frame, applied where ``turned`` (n_seg,) (:class:`Trajectory`);
     ``h_levels`` (n_hemi, n_el, n_az, n_b) dB; ``alpha`` (n_seg, n_b) dB/m; ``beta`` (n_b,)
     normalised admittance for the impedance ground (ground_kind 2), ground_kind 1 = hard,
     0 = none. Outputs: ``la_out`` (n_r, n_t) dB(A), ``seg_out`` (n_r, n_t) emitting segment or
@@ -476,15 +468,20 @@ def _propagate_kernel(rec, times, c, knot_t, knot_p, vel, hemi_of_seg, hemi_next
             n0 = r0 / re
             n1 = r1 / re
             n2 = r2 / re
+            # the ray's direction in the hemispheres' frame (F n where the segment's frame turns)
+            hn0, hn1, hn2 = n0, n1, n2
+            if turned[k]:
+                hn0 = frames[k, 0, 0] * n0 + frames[k, 0, 1] * n1 + frames[k, 0, 2] * n2
+                hn1 = frames[k, 1, 0] * n0 + frames[k, 1, 1] * n1 + frames[k, 1, 2] * n2
+                hn2 = frames[k, 2, 0] * n0 + frames[k, 2, 1] * n1 + frames[k, 2, 2] * n2
             h = hemi_of_seg[k]
-            e0, we, a0, a1, wa, spread = _hemisphere_reading(h_el, n_az, h_daz, h_radius, h_mach, h, frames, turned,
-                                                             k, 0, n0, n1, n2, re)
+            e0, we, a0, a1, wa, spread = _hemisphere_reading(h_el, n_az, h_daz, h_radius, h_mach, h, hn0, hn1, hn2, re)
             w2 = hemi_weight[k]
             h2 = hemi_next[k]
             e0b, web, a0b, a1b, wab, spread2 = e0, we, a0, a1, wa, spread
             if w2 > 0.0:
-                e0b, web, a0b, a1b, wab, spread2 = _hemisphere_reading(h_el, n_az, h_daz, h_radius, h_mach, h2, frames,
-                                                                        turned, k, 1, n0, n1, n2, re)
+                e0b, web, a0b, a1b, wab, spread2 = _hemisphere_reading(h_el, n_az, h_daz, h_radius, h_mach, h2, hn0,
+                                                                        hn1, hn2, re)
             # Doppler: shift by δ bands with the trajectory's Mach number toward the receiver
             mr = (vel[k, 0] * n0 + vel[k, 1] * n1 + vel[k, 2] * n2) / c
             delta = -10.0 * np.log10(1.0 - mr)
@@ -550,9 +547,9 @@ def _segment_states(trajectory: Trajectory) -> tuple[np.ndarray, ...]:
         nxt = np.ascontiguousarray(trajectory.next_hemisphere_index, dtype=np.int64)
         weight = np.ascontiguousarray(trajectory.hemisphere_weight, dtype=float)
     if trajectory.hemisphere_frames is None:
-        return nxt, weight, np.zeros((n, 2, 3, 3)), np.zeros(n, dtype=np.bool_)
+        return nxt, weight, np.zeros((n, 3, 3)), np.zeros(n, dtype=np.bool_)
     frames = np.ascontiguousarray(trajectory.hemisphere_frames, dtype=float)
-    return nxt, weight, frames, np.any(frames != np.eye(3), axis=(1, 2, 3))
+    return nxt, weight, frames, np.any(frames != np.eye(3), axis=(1, 2))
 
 
 def propagate(hemispheres, trajectory: Trajectory, receivers, time_s, speed_of_sound_mps: float,

@@ -52,11 +52,11 @@ def test_frames_put_the_canonical_path_axes_on_the_sample():
                           np.ones(2, int), np.zeros(2))
     frames = hemisphere_frames(samples)
     actual = path_axes(chi, 0.0)
-    np.testing.assert_allclose(frames[0, 0] @ actual[:, 0], [np.cos(gamma_e), 0.0, np.sin(gamma_e)], atol=1e-12)
-    np.testing.assert_allclose(frames[0, 0] @ actual[:, 1], [-np.sin(gamma_e), 0.0, np.cos(gamma_e)], atol=1e-12)
-    np.testing.assert_allclose(frames[0, 0] @ actual[:, 2], [0.0, -1.0, 0.0], atol=1e-12)
+    np.testing.assert_allclose(frames[0] @ actual[:, 0], [np.cos(gamma_e), 0.0, np.sin(gamma_e)], atol=1e-12)
+    np.testing.assert_allclose(frames[0] @ actual[:, 1], [-np.sin(gamma_e), 0.0, np.cos(gamma_e)], atol=1e-12)
+    np.testing.assert_allclose(frames[0] @ actual[:, 2], [0.0, -1.0, 0.0], atol=1e-12)
     specific_force = actual @ np.array([np.sin(gamma_e), np.cos(gamma_e), 0.0])  # E, per g
-    np.testing.assert_allclose(frames[0, 1] @ specific_force, [0.0, 0.0, 1.0], atol=1e-12)
+    np.testing.assert_allclose(frames[0] @ specific_force, [0.0, 0.0, 1.0], atol=1e-12)
     np.testing.assert_allclose(actual[:, 2], [np.sin(chi), -np.cos(chi), 0.0], atol=1e-12)  # starboard
 
 

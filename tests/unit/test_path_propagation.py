@@ -32,7 +32,7 @@ def test_turned_path_equals_the_path_along_x_with_receivers_turned():
     times = np.arange(0.0, 50.0, 0.5)
     hemi = [directional(1)]
     straight = propagate(hemi, Trajectory(t, along_x, np.array([0]), (None,)), rec_x, times, C, Ground("hard"))
-    frames = np.stack([turn_about_z(chi)] * 2)[None]
+    frames = turn_about_z(chi)[None]
     turned = propagate(hemi, Trajectory(t, along_x @ rot.T, np.array([0]), (None,), hemisphere_frames=frames),
                        rec_x @ rot.T, times, C, Ground("hard"))
     heard = straight.la_db > LEVEL_FLOOR_DB
@@ -115,7 +115,7 @@ def test_bad_state_fields_are_refused():
     with pytest.raises(PropagationError, match="within \\[0, 1\\]"):
         Trajectory(t, p, np.array([0]), (None,), next_hemisphere_index=np.array([0]), hemisphere_weight=np.array([1.5]))
     with pytest.raises(PropagationError, match="hemisphere_frames"):
-        Trajectory(t, p, np.array([0]), (None,), hemisphere_frames=np.full((1, 2, 3, 3), 0.5))
+        Trajectory(t, p, np.array([0]), (None,), hemisphere_frames=np.full((1, 3, 3), 0.5))
     with pytest.raises(PropagationError, match="next_hemisphere_index must lie"):
         propagate([omnidirectional(90.0, (1.0, 0.0, 0.0))],
                   Trajectory(t, p, np.array([0]), (None,), next_hemisphere_index=np.array([3]),
