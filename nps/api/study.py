@@ -82,5 +82,5 @@ class Study:
         variables = {v.label: v.base_value for v in self.study.variables}
         if not rows:
             raise ValueError(f"study {self.study.name}: every design is refused; first: {refused[0][2]}")
-        tables = trade_tables(rows, [d.id for d in self.study.designs], variables)
+        tables = trade_tables(rows, [d.id for d in self.study.designs], variables, spec.get("pareto"))
         return StudyResult(*tables, refused_table(refused, list(variables)))

@@ -641,7 +641,47 @@ def load_path(path: str | Path, dt_s: float | None = None, document: Any = None)
     if dt_s is not None and len(history.time_s) < 2:
         raise ConfigError(f"{path}: legs: the path lasts {legs[-1].t0_s + legs[-1].duration_s:.4g} s: expected at least "
                           f"one time step paths.dt_s = {dt_s} s")
+    if "terrain" in receivers:
+        _raise(path, _terrain_problems(receivers, history))
     return data
+
+
+def _terrain_problems(receivers: dict, history) -> list[tuple[str, str]]:
+    """A path's terrain (``receivers.terrain``): a grid of elevations ≥ 0 (nps.mission.terrain.Terrain) that
+    covers the receiver grid (given, or the track's box) and the microphones, and no sample of the path below it."""
+    import numpy as np
+
+    from nps.mission.path_noise import track_grid
+    from nps.mission.terrain import Terrain, TerrainError
+
+    try:
+        terrain = Terrain.from_config(receivers["terrain"])
+    except TerrainError as error:
+        field, _, expected = str(error).partition(": ")
+        return [(f"receivers.terrain.{field}", expected)] if field in ("height_m",) else [("receivers.terrain", str(error))]
+    if "grid" in receivers:
+        box = (receivers["grid"]["x_range_m"], receivers["grid"]["y_range_m"])
+    else:
+        grid = track_grid(history.position_m, float(receivers["margin_m"]), float(receivers["spacing_m"]))
+        box = (grid.x_range_m, grid.y_range_m)
+    extent = (f"x {terrain.x_m[0]:g}..{terrain.x_m[-1]:g} m, y {terrain.y_m[0]:g}..{terrain.y_m[-1]:g} m")
+    problems = []
+    corners = np.array([(x, y) for x in box[0] for y in box[1]], float)
+    if not np.all(terrain.covers(corners[:, 0], corners[:, 1])):
+        problems.append(("receivers.terrain", f"expected a grid covering the receiver grid x {box[0][0]:g}..{box[0][1]:g} m, "
+                         f"y {box[1][0]:g}..{box[1][1]:g} m; it covers {extent}"))
+    problems += [(f"receivers.microphones.{name}", f"expected a position on the terrain grid ({extent}), got {xyz[:2]}")
+                 for name, xyz in receivers["microphones"].items() if not terrain.covers(xyz[0], xyz[1])]
+    position = np.asarray(history.position_m, float)
+    inside = terrain.covers(position[:, 0], position[:, 1])
+    clearance = np.full(len(position), np.inf)
+    clearance[inside] = position[inside, 2] - terrain.elevation_m(position[inside, 0], position[inside, 1])
+    k = int(np.argmin(clearance))
+    if clearance[k] < 0.0:
+        problems.append((f"legs[{int(history.leg[k])}]", f"the path passes {-clearance[k]:.3g} m below the terrain at "
+                         f"x {position[k, 0]:.6g} m, y {position[k, 1]:.6g} m (t = {history.time_s[k]:.4g} s); expected "
+                         "heights above the terrain (the path's heights are above the datum z = 0)"))
+    return problems
 
 
 @dataclass(frozen=True)

@@ -20,10 +20,13 @@ Paths (``<...>`` are names of the base campaign):
 * ``mission.<segment>.<field>``: a segment's field for every aircraft, ``mission.<segment>.<aircraft>.<field>``
   for one (setting a speed drops that entry's ``flight_path_deg`` check, which the new speeds would fail; link
   ``climb_speed_mps`` to ``forward_speed_mps`` with exponent 1 to hold the flight-path angle);
-* ``[config.]<section>.<key>[.<subkey>]``: a campaign-configuration field, e.g. ``resolution.n_psi``.
+* ``[config.]<section>.<key>[.<subkey>]``: a campaign-configuration field, e.g. ``resolution.n_psi``;
+* ``paths.<path>.<key>[.<index or key>...]``: a field of a flight path the study flies (``base.paths``, a procedure
+  study), list items by their index, e.g. ``paths.helicopter_approach_6deg.legs.1.flight_path_deg``.
 
 Inside, a path names one or more fields, each a tuple: ``("aircraft", <aircraft>, ..., <key>)``,
-``("mission", <segment>, <aircraft>, <key>)`` or ``("config", <section>, ..., <key>)``; two paths that name the
+``("mission", <segment>, <aircraft>, <key>)``, ``("config", <section>, ..., <key>)`` or ``("paths", <path>, <key or
+index>, ...)``; two paths that name the
 same field (``resolution.n_psi`` and ``config.resolution.n_psi``) are the same variable.
 """
 
@@ -43,9 +46,10 @@ from typing import Any, Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
-from nps.app.config import (Campaign, ConfigError, azimuth_grid_problem, fill_defaults, load_campaign, load_schema,
-                            raise_problems, read_yaml, schema_node, schema_problems, value_problem)
+from nps.app.config import (Campaign, ConfigError, azimuth_grid_problem, fill_defaults, load_campaign, load_path,
+                            load_schema, raise_problems, read_yaml, schema_node, schema_problems, value_problem)
 from nps.app.resources import BUNDLED_OBSERVERS, BUNDLED_RESOLUTION, BUNDLED_ROTORS, observer_count
+from nps.app.trade import trade_columns
 
 # Resolution of the preview fidelity (docs/reference/studies.md "Preview fidelity"): a 1.5 deg azimuth step
 # (240 steps: a whole number per blade passage for 2 to 6 blades; BVI needs it), 24 radial stations, 3 wake
@@ -54,8 +58,10 @@ from nps.app.resources import BUNDLED_OBSERVERS, BUNDLED_RESOLUTION, BUNDLED_ROT
 PREVIEW_RESOLUTION = {"n_psi": 240, "n_r": 24, "wake_revolutions": 3, "samples_per_rev": 1024}
 SPEED_FIELDS = ("forward_speed_mps", "climb_speed_mps")
 # trade-table columns (nps.app.trade.case_row) a variable label must not take
-RESERVED_COLUMNS = ("design", "aircraft", "segment", "segment_name", "power_W", "validity_warnings", "pareto")
-RESERVED_PATTERN = r"[a-z0-9_]*(max_\w+|_(thrust_N|torque_Nm|power_W|ct|ct_sigma|omega_rad_s|tip_speed_mps|tip_mach))"
+RESERVED_COLUMNS = ("design", "aircraft", "segment", "segment_name", "power_W", "validity_warnings", "pareto", "path",
+                    "path_description", "duration_s", "distance_m", "energy_J", "n_states", "footprint_open")
+RESERVED_PATTERN = (r"[a-z0-9_]*(max_\w+|_(thrust_N|torque_Nm|power_W|ct|ct_sigma|omega_rad_s|tip_speed_mps|tip_mach))"
+                    r"|(sel|lamax|epnl)_\w+_db|\w+_area_km2")
 # Job time (s) of one case (an aircraft of two rotors in one segment) at the bundled resolution with the
 # 360-observer hemisphere, by what it scales with: measured by benchmarks/bench_studies.py (docs/reference/
 # studies.md "Performance": 4.5 s a case, the wake 2.5 s in each BVI segment); :func:`case_seconds`.
@@ -139,6 +145,9 @@ class DesignStudy:
 
     @property
     def aircraft(self) -> list[str]:
+        """The aircraft of the study's jobs: the campaign's, or in a procedure study those flying its paths."""
+        if self.base.paths:
+            return list(dict.fromkeys(path["aircraft"] for path in self.base.paths.values()))
         return list(self.base.aircraft)
 
     @property
@@ -176,7 +185,7 @@ def _is_number(value: Any) -> bool:
 
 
 def _text(field: tuple) -> str:
-    return ".".join(field)
+    return ".".join(map(str, field))
 
 
 def _overlap(a: tuple, b: tuple) -> bool:
@@ -186,11 +195,18 @@ def _overlap(a: tuple, b: tuple) -> bool:
 
 
 class _Documents:
-    """The documents of a campaign as written (config, aircraft, mission) and filled (the campaign): the fields
-    a design path names, their values and schemas, and setting them in the written documents."""
+    """The documents of a campaign as written (config, aircraft, mission, flight paths by name) and filled (the
+    campaign, its ``paths`` validated): the fields a design path names, their values and schemas, and setting them
+    in the written documents."""
 
-    def __init__(self, config: dict, aircraft: dict, mission: dict, filled: Campaign):
+    def __init__(self, config: dict, aircraft: dict, mission: dict, filled: Campaign, paths: dict | None = None):
         self.config, self.aircraft, self.mission, self.filled = config, aircraft, mission, filled
+        self.paths = paths or {}
+
+    def copy(self) -> "_Documents":
+        """The written documents copied (a variant sets its fields there), the filled campaign shared."""
+        return _Documents(copy.deepcopy(self.config), copy.deepcopy(self.aircraft), copy.deepcopy(self.mission),
+                          self.filled, copy.deepcopy(self.paths))
 
     def fields(self, path: str) -> tuple[tuple, ...]:
         """The fields ``path`` names; KeyError (the reason) when it names none or one the campaign does not run."""
@@ -215,20 +231,26 @@ class _Documents:
             if len(rest) != 1:
                 raise KeyError("expected mission.<segment>[.<aircraft>].<field>")
             fields = [("mission", parts[1], name, rest[0]) for name in names]
+        elif parts[0] == "paths":
+            if len(parts) < 3 or parts[1] not in campaign.paths:
+                raise KeyError(f"expected paths.<path>.<field> of a path of base.paths ({list(campaign.paths)})")
+            fields = [("paths", parts[1], *(int(p) if p.isdigit() else p for p in parts[2:]))]
         else:
             parts = parts[1:] if parts[0] == "config" else parts
             if len(parts) < 2 or parts[0] not in load_schema("config")["properties"]:
-                raise KeyError("expected aircraft..., mission... or a configuration section and key")
+                raise KeyError("expected aircraft..., mission..., paths... or a configuration section and key")
             fields = [("config", *parts)]
         for found in fields:
             self._place(found, filled=True)
         return tuple(fields)
 
-    def _place(self, field: tuple, filled: bool) -> tuple[dict, str]:
+    def _place(self, field: tuple, filled: bool) -> tuple[dict | list, str | int]:
         """(container, key) of a field in the filled documents or the written ones."""
         kind, name, *keys = field
         if kind == "config":
             return _descend(self.filled.config if filled else self.config, [name, *keys], filled)
+        if kind == "paths":
+            return _descend(self.filled.paths[name] if filled else self.paths[name], keys, filled)
         if kind == "mission":
             segments = (self.filled.mission if filled else self.mission)["segments"]
             return _descend(next(s for s in segments if s["id"] == name)["aircraft"][keys[0]], keys[1:], filled)
@@ -246,6 +268,8 @@ class _Documents:
         kind, name, *keys = field
         if kind == "config":
             node = schema_node("config", [name, *keys])
+        elif kind == "paths":
+            node = schema_node("path", keys)
         elif kind == "mission":
             node = schema_node("mission", ["segments", 0, "aircraft", *keys])
         else:
@@ -259,14 +283,19 @@ class _Documents:
             container.pop("flight_path_deg", None)
 
 
-def _descend(node: Any, keys: list[str], filled: bool) -> tuple[dict, str]:
-    """(container, last key) of ``keys`` below ``node``; written documents get missing sections created,
-    filled ones must hold every key."""
+def _descend(node: Any, keys: list, filled: bool) -> tuple[dict | list, str | int]:
+    """(container, last key) of ``keys`` (mapping keys, list indices) below ``node``; written documents get
+    missing sections of mappings created, filled ones must hold every key."""
+    def holds(container: Any, key: str | int) -> bool:
+        if isinstance(key, int):
+            return isinstance(container, list) and key < len(container)
+        return isinstance(container, dict) and (not filled or key in container)
+
     for key in keys[:-1]:
-        if not isinstance(node, dict) or (filled and key not in node):
+        if not holds(node, key):
             raise KeyError(f"no field '{key}'")
-        node = node.setdefault(key, {})
-    if not isinstance(node, dict) or (filled and keys[-1] not in node):
+        node = node[key] if isinstance(key, int) else node.setdefault(key, {})
+    if not holds(node, keys[-1]):
         raise KeyError(f"no field '{keys[-1]}'")
     return node, keys[-1]
 
@@ -372,13 +401,63 @@ def _base_campaign(spec: dict, refuse: _Refusal, root: Path, resolution: Mapping
     config_dir = root / campaign.config["campaign"]["config_dir"]
     aircraft = {name: read_yaml(config_dir / "aircraft" / f"{name}.yaml") for name in campaign.aircraft}
     mission = read_yaml(config_dir / "missions" / f"{campaign.config['campaign']['mission']}.yaml")
-    return campaign, _Documents(written, aircraft, mission, campaign), config_file
+    paths = _base_paths(spec, campaign, config_dir, refuse)
+    campaign = _with_paths(campaign, paths, config_dir, refuse, "base.paths")
+    return campaign, _Documents(written, aircraft, mission, campaign, paths), config_file
+
+
+def _base_paths(spec: dict, campaign: Campaign, config_dir: Path, refuse: _Refusal) -> dict:
+    """The flight paths a procedure study flies (``base.paths``: name → document as written), refused where a file
+    is missing or its aircraft is not one of the study's, or where two paths name different microphones (the
+    trade table's columns)."""
+    names = spec["base"].get("paths", [])
+    files = {name: config_dir / "paths" / f"{name}.yaml" for name in names}
+    refuse((f"base.paths[{i}]", f"expected a flight path of {config_dir / 'paths'}, {files[name]} does not exist")
+           for i, name in enumerate(names) if not files[name].is_file())
+    paths = {name: read_yaml(files[name]) for name in names}
+    problems = [(f"base.paths[{i}]", f"{files[name]} flies '{paths[name].get('aircraft')}': expected one of the study's "
+                 f"aircraft {list(campaign.aircraft)}") for i, name in enumerate(names)
+                if paths[name].get("aircraft") not in campaign.aircraft]
+    microphones = {name: sorted((paths[name].get("receivers") or {}).get("microphones") or {}) for name in names}
+    problems += [("base.paths", f"{names[0]} and {name} name the microphones {microphones[names[0]]} and {microphones[name]}: "
+                  "expected the same microphones (one trade-table column per microphone and metric)")
+                 for name in names[1:] if microphones[name] != microphones[names[0]]]
+    refuse(problems)
+    return paths
+
+
+def _with_paths(campaign: Campaign, paths: Mapping[str, dict], config_dir: Path, refuse: _Refusal | None,
+                where: str) -> Campaign:
+    """``campaign`` with the flight ``paths`` (name → document) validated (:func:`nps.app.config.load_path`) and
+    planned (:meth:`Campaign.with_paths`); a problem is refused at ``where`` (``refuse`` given) or raised."""
+    if not paths:
+        return campaign
+    try:
+        validated = {name: load_path(config_dir / "paths" / f"{name}.yaml", campaign.config["paths"]["dt_s"], document)
+                     for name, document in paths.items()}
+        return campaign.with_paths(validated)
+    except ConfigError as error:
+        if refuse is None:
+            raise
+        refuse(_nested(where, "", error))
 
 
 def _product_problems(spec: dict, base: Campaign) -> list[tuple[str, str]]:
-    """Products and observer sets the base configuration cannot give."""
+    """Products and observer sets the base configuration cannot give, a procedure study's products (procedure
+    alone, with base.paths) and the Pareto front's columns (:func:`nps.app.trade.trade_columns`)."""
     config = spec["base"]["config"]
     problems = []
+    procedure = "procedure" in spec["products"]
+    if procedure != bool(base.paths) or (procedure and len(spec["products"]) > 1):
+        problems.append(("products", f"a procedure study flies base.paths and has one row per design x path: expected "
+                         f"products [procedure] with base.paths, or other products without; got {spec['products']} "
+                         f"and base.paths {list(base.paths)}"))
+    elif procedure and "footprint" not in base.config:
+        problems.append(("products", f"'procedure' needs the footprint section in {config} (the states' source set, ground)"))
+    else:
+        names = sorted(trade_columns(spec["products"], base, spec["observer_sets"]))
+        problems += [(f"pareto.{key}", f"expected a trade-table column of the study's products ({', '.join(names)}), got "
+                      f"'{column}'") for key, column in spec.get("pareto", {}).items() if column not in names]
     if "certification" in spec["products"] and "certification" not in base.config:
         problems.append(("products", f"'certification' needs the certification section in {config}"))
     if "footprint" in spec["products"] and ("footprint" not in base.config or "profile" not in base.mission):
@@ -598,14 +677,19 @@ def case_seconds(config: Mapping, n_rotors: int, bvi: bool, observer_sets: Seque
 
 
 def _design_cost_s(base: Campaign, variables: tuple[Variable, ...], observer_sets: Sequence[str]) -> float:
-    """Estimated job time of one design (core-seconds): :func:`case_seconds` over its aircraft and segments,
-    with each numeric configuration variable at its largest value (a bound over the designs)."""
+    """Estimated job time of one design (core-seconds): :func:`case_seconds` over its aircraft and segments (a
+    procedure study: over each path's trim states of the base design, with the wake, to the footprint's source
+    set), with each numeric configuration variable at its largest value (a bound over the designs)."""
     config = copy.deepcopy(base.config)
     for variable in variables:
         kind, *keys = variable.fields[0]
         if kind == "config" and all(isinstance(v, (int, float)) for v in variable.probes()):
             container, key = _descend(config, keys, filled=True)
             container[key] = max(variable.probes())
+    if base.paths:
+        source = [config["footprint"]["source_set"]]
+        return sum(len(base.path_keys[name]) * case_seconds(config, len(base.aircraft[path["aircraft"]]["rotors"]), True, source)
+                   for name, path in base.paths.items())
     bvi = dataclasses.replace(base, config=config).bvi_segments()
     return sum(case_seconds(config, len(aircraft["rotors"]), segment in bvi, observer_sets)
                for aircraft in base.aircraft.values() for segment in base.segments)
@@ -621,9 +705,13 @@ def size_text(n_designs: int, base: Campaign, design_cost_s: float) -> str:
     """The size of a study and its estimated cost: designs × aircraft × segments = cases, the core-hours of their
     jobs and the time validating the variants takes before them."""
     n_aircraft, n_segments = len(base.aircraft), len(base.segments)
-    return (f"{n_designs} designs × {n_aircraft} aircraft × {n_segments} segments = {n_designs * n_aircraft * n_segments} "
-            f"cases, estimated {n_designs * design_cost_s / 3600:.3g} core-hours of jobs (after about "
+    cost = (f"estimated {n_designs * design_cost_s / 3600:.3g} core-hours of jobs (after about "
             f"{_duration(n_designs * VARIANT_VALIDATION_S)} validating the variants)")
+    if base.paths:
+        n_states = sum(len(keys) for keys in base.path_keys.values())
+        return (f"{n_designs} designs × {len(base.paths)} paths = {n_designs * len(base.paths)} procedures ({n_states} trim "
+                f"states in the base design's paths; a state another design flies is computed once), {cost}")
+    return f"{n_designs} designs × {n_aircraft} aircraft × {n_segments} segments = {n_designs * n_aircraft * n_segments} cases, {cost}"
 
 
 @dataclass(frozen=True)
@@ -738,11 +826,11 @@ def _constraint_value(documents: _Documents, assignment: dict, terms: tuple) -> 
 
 
 def _design(documents: _Documents, assignment: dict, config_file: Path, root: Path) -> Campaign:
-    variant = _Documents(copy.deepcopy(documents.config), copy.deepcopy(documents.aircraft),
-                         copy.deepcopy(documents.mission), documents.filled)
+    variant = documents.copy()
     for target, value in assignment.items():
         variant.set(target, value)
-    return load_campaign(variant.config, config_file, root, {"aircraft": variant.aircraft, "mission": variant.mission})
+    campaign = load_campaign(variant.config, config_file, root, {"aircraft": variant.aircraft, "mission": variant.mission})
+    return _with_paths(campaign, variant.paths, root / campaign.config["campaign"]["config_dir"], None, "")
 
 
 def _stderr_progress(file: str, total: int) -> Callable[[int, int], None]:

@@ -106,6 +106,78 @@ def footprint_columns(table: pd.DataFrame, areas: pd.DataFrame) -> pd.DataFrame:
     return table
 
 
+def state_power_history_W(history: pd.DataFrame, power_W: Mapping[str, float]) -> np.ndarray:
+    """Rotor power (W) along a path history (stage ``path``): each sample's blend of its bracketing states'
+    powers, (1 − w) P(state) + w P(neighbour), the weights that blend their source hemispheres."""
+    weight = history["neighbour_weight"].to_numpy(float)
+    own = history["state"].map(power_W).to_numpy(float)
+    neighbour = history["neighbour"].map(power_W).to_numpy(float)
+    return (1.0 - weight) * own + weight * neighbour
+
+
+def path_energy_J(time_s: np.ndarray, power_W: np.ndarray, duration_s: float) -> float:
+    """Energy (J) the rotors take over a path: the trapezoidal integral of the sampled power, the last sample's
+    power held to the path's end ``duration_s`` (the samples are k Δt, the end between two)."""
+    time_s, power_W = np.asarray(time_s, float), np.asarray(power_W, float)
+    inner = float(np.sum(0.5 * (power_W[1:] + power_W[:-1]) * np.diff(time_s)))
+    return inner + float(power_W[-1]) * max(duration_s - float(time_s[-1]), 0.0)
+
+
+PROCEDURE_METRICS = ("sel", "lamax", "epnl")  # per microphone: sel_<mic>_db, ... and their maxima max_sel_db, ...
+
+
+def procedure_row(path: Mapping, design: Mapping, history: pd.DataFrame, power_W: Mapping[str, float],
+                  duration_s: float, distance_m: float, microphones: pd.DataFrame, areas: pd.DataFrame,
+                  warnings: Sequence[str]) -> pd.DataFrame:
+    """The one-row trade table of a flown path (a procedure study, docs/reference/studies.md): ``design`` (label →
+    value) first, then aircraft, ``path`` and ``path_description``, ``duration_s``, ``distance_m`` (along the
+    path), ``energy_J`` (:func:`path_energy_J` of the states' rotor power ``power_W``, state key → W, blended as
+    the hemispheres are), ``n_states``; per microphone ``sel_<mic>_db``, ``lamax_<mic>_db``, ``epnl_<mic>_db`` and
+    their maxima ``max_sel_db``, ``max_lamax_db``, ``max_epnl_db``; the contour areas (:func:`footprint_columns`)
+    and ``validity_warnings``."""
+    power = state_power_history_W(history, power_W)
+    row: dict[str, object] = {"aircraft": path["aircraft"], "path": path["name"],
+                              "path_description": path.get("description", ""), "duration_s": float(duration_s),
+                              "distance_m": float(distance_m),
+                              "energy_J": path_energy_J(history["time_s"].to_numpy(float), power, duration_s),
+                              "n_states": len(set(history["state"]) | set(history["neighbour"]))}
+    for metric in PROCEDURE_METRICS:
+        values = dict(zip(microphones["microphone"], microphones[f"{metric}_db"].astype(float)))
+        row.update({f"{metric}_{name}_db": value for name, value in values.items()})
+        row[f"max_{metric}_db"] = max(values.values())
+    clashes = sorted(set(design) & set(row))
+    if clashes:
+        raise ValueError(f"design-variable labels {clashes} are trade-table columns; choose other labels")
+    table = footprint_columns(pd.DataFrame([{**design, **row}]), areas)
+    table["validity_warnings"] = "; ".join(warnings)
+    return table
+
+
+def trade_columns(products: Sequence[str], campaign: Campaign, observer_sets: Sequence[str]) -> set[str]:
+    """The numeric trade-table columns of a study's products for ``campaign`` (the choices of its Pareto front):
+    a procedure study's :func:`procedure_row` columns (its paths' microphones, the contour levels), else power,
+    each rotor's performance and the observer sets' maxima (:func:`case_row`) and the Chapter 8 EPNLs."""
+    from nps.mission.footprint import CONTOUR_LEVELS_DB
+
+    if "procedure" in products:
+        microphones = next(iter(campaign.paths.values()))["receivers"]["microphones"]
+        columns = {"duration_s", "distance_m", "energy_J", *(f"max_{m}_db" for m in PROCEDURE_METRICS)}
+        columns |= {f"{m}_{name}_db" for m in PROCEDURE_METRICS for name in microphones}
+        return columns | {f"{metric}_{level:g}db_area_km2" for metric in ("sel_db", "lamax_db") for level in CONTOUR_LEVELS_DB}
+    columns = {"power_W", *(noise_column(obsset, column) for obsset in observer_sets for column in NOISE_METRICS)}
+    columns |= {f"{rotor['name']}_{quantity}" for aircraft in campaign.aircraft.values() for rotor in aircraft["rotors"]
+                for quantity in ("thrust_N", "torque_Nm", "power_W", "ct", "ct_sigma", "tip_mach")}
+    if "certification" in products:
+        columns |= {f"epnl_{procedure}_db" for procedure in campaign.config["certification"]["segments"]}
+    return columns
+
+
+def case_columns(table: pd.DataFrame) -> tuple[str, str]:
+    """(key, name) columns of a trade table's cases within an aircraft: ("path", "path_description") for the
+    rows of a procedure study, ("segment", "segment_name") else."""
+    return ("path", "path_description") if "path" in table.columns else ("segment", "segment_name")
+
+
 def refused_table(refused: Sequence[tuple[Mapping, str, str]], variables: Sequence[str]) -> pd.DataFrame:
     """The designs a validity check or a trim refused: one row per (design values with ``design``, aircraft,
     reason), columns design, the variables, aircraft, reason."""
@@ -122,13 +194,21 @@ def pareto_front(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     return ~np.any(better_or_equal & strictly, axis=1)
 
 
-def mark_pareto(table: pd.DataFrame, noise: str = "max_dba_db", power: str = "power_W") -> pd.DataFrame:
-    """``table`` with a ``pareto`` column: on the front of ``noise`` against ``power`` within each aircraft
-    × segment."""
+def pareto_columns(table: pd.DataFrame, pareto: Mapping[str, str] | None = None) -> tuple[str, str]:
+    """(noise, cost) of a trade table's Pareto front: the study's ``pareto`` section, its defaults max_dba_db
+    against power_W, for a procedure study's rows max_sel_db against energy_J."""
+    given = dict(pareto or {})
+    defaults = ("max_sel_db", "energy_J") if "path" in table.columns else ("max_dba_db", "power_W")
+    return given.get("noise", defaults[0]), given.get("cost", defaults[1])
+
+
+def mark_pareto(table: pd.DataFrame, noise: str = "max_dba_db", cost: str = "power_W") -> pd.DataFrame:
+    """``table`` with a ``pareto`` column: on the front of ``noise`` against ``cost`` within each aircraft
+    × segment (× path: :func:`case_columns`)."""
     table = table.copy()
     table["pareto"] = False
-    for _, group in table.groupby(["aircraft", "segment"], sort=False):
-        table.loc[group.index, "pareto"] = pareto_front(group[power].to_numpy(), group[noise].to_numpy())
+    for _, group in table.groupby(["aircraft", case_columns(table)[0]], sort=False):
+        table.loc[group.index, "pareto"] = pareto_front(group[cost].to_numpy(), group[noise].to_numpy())
     return table
 
 
@@ -140,25 +220,30 @@ def _relative(values: pd.Series, base) -> bool:
             and bool((values / base > 0).all()) and values.nunique() > 1)
 
 
+RELATIVE_METRICS = ("power_W", "energy_J", "duration_s", "distance_m")  # fitted as logarithms, changes in percent
+
+
 def sensitivity(table: pd.DataFrame, variables: Mapping[str, float], metrics: Sequence[str]) -> pd.DataFrame:
-    """Change of each metric per +10 % of each variable, per aircraft × segment: least squares of the metric
-    on ln(variable / base value) over the designs (all variables at once: the main effects of a factorial),
-    times ln 1.1. Levels in dB change by that many dB; ``power_W`` is fitted as ln(power) and reported in
-    percent. ``variables``: label → base value (variables with values of both signs, booleans and text are
-    skipped: no relative change). Columns: aircraft, segment, metric, variable, change_per_10pct, unit."""
+    """Change of each metric per +10 % of each variable, per aircraft × segment (× path: :func:`case_columns`):
+    least squares of the metric on ln(variable / base value) over the designs (all variables at once: the main
+    effects of a factorial), times ln 1.1. Levels in dB change by that many dB; :data:`RELATIVE_METRICS`
+    (power, energy, time, distance) are fitted as logarithms and reported in percent. ``variables``: label →
+    base value (variables with values of both signs, booleans and text are skipped: no relative change).
+    Columns: aircraft, segment (path), metric, variable, change_per_10pct, unit."""
     usable = [v for v, base in variables.items() if _relative(table[v], base)]
+    key = case_columns(table)[0]
     rows = []
-    for (aircraft, segment), group in table.groupby(["aircraft", "segment"], sort=False):
+    for (aircraft, case), group in table.groupby(["aircraft", key], sort=False):
         design = np.column_stack([np.ones(len(group))] + [np.log(group[v].to_numpy(float) / variables[v]) for v in usable])
         for metric in metrics:
+            relative = metric in RELATIVE_METRICS
             values = group[metric].to_numpy(float)
-            target = np.log(values) if metric == "power_W" else values
-            coefficients = np.linalg.lstsq(design, target, rcond=None)[0]
+            coefficients = np.linalg.lstsq(design, np.log(values) if relative else values, rcond=None)[0]
             for variable, slope in zip(usable, coefficients[1:]):
-                change = 100.0 * (math.exp(slope * TEN_PERCENT) - 1.0) if metric == "power_W" else slope * TEN_PERCENT
-                rows.append({"aircraft": aircraft, "segment": segment, "metric": metric, "variable": variable,
-                             "change_per_10pct": float(change), "unit": "%" if metric == "power_W" else "dB"})
-    return pd.DataFrame(rows, columns=["aircraft", "segment", "metric", "variable", "change_per_10pct", "unit"])
+                change = 100.0 * (math.exp(slope * TEN_PERCENT) - 1.0) if relative else slope * TEN_PERCENT
+                rows.append({"aircraft": aircraft, key: case, "metric": metric, "variable": variable,
+                             "change_per_10pct": float(change), "unit": "%" if relative else "dB"})
+    return pd.DataFrame(rows, columns=["aircraft", key, "metric", "variable", "change_per_10pct", "unit"])
 
 
 def sensitivity_ranking(sensitivities: pd.DataFrame) -> pd.DataFrame:
@@ -175,15 +260,24 @@ def sensitivity_ranking(sensitivities: pd.DataFrame) -> pd.DataFrame:
 METRICS = ("max_dba_db", "max_oaspl_db", "max_bvispl_db", "power_W")
 
 
-def trade_tables(rows: Sequence[pd.DataFrame], designs: Sequence[str], variables: Mapping[str, float]
-                 ) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame]:
-    """(trade table, sensitivity per aircraft × segment, ranking) from the cases' rows: rows ordered by
-    ``designs`` (ids in study order), aircraft and segment, with the Pareto front marked
-    (:func:`mark_pareto`); sensitivities of :data:`METRICS` present (:func:`sensitivity`)."""
+def study_metrics(table: pd.DataFrame) -> list[str]:
+    """The metrics a trade table's sensitivities and trends show: :data:`METRICS` present, or for a procedure
+    study the SEL at each microphone, the rotor energy and the duration."""
+    if "path" in table.columns:
+        return [c for c in table.columns if c.startswith("sel_") and c.endswith("_db")] + ["energy_J", "duration_s"]
+    return [m for m in METRICS if m in table.columns]
+
+
+def trade_tables(rows: Sequence[pd.DataFrame], designs: Sequence[str], variables: Mapping[str, float],
+                 pareto: Mapping[str, str] | None = None) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame]:
+    """(trade table, sensitivity per aircraft × segment or path, ranking) from the cases' rows: rows ordered by
+    ``designs`` (ids in study order), aircraft and segment (path), with the Pareto front of the study's
+    ``pareto`` section marked (:func:`pareto_columns`, :func:`mark_pareto`); sensitivities of
+    :func:`study_metrics` (:func:`sensitivity`)."""
     table = pd.concat(list(rows), ignore_index=True)
     order = {design: index for index, design in enumerate(designs)}
-    table = table.sort_values(["aircraft", "segment"], kind="mergesort")
+    table = table.sort_values(["aircraft", case_columns(table)[0]], kind="mergesort")
     table = table.iloc[table["design"].map(order).argsort(kind="stable")].reset_index(drop=True)
-    table = mark_pareto(table)
-    per_segment = sensitivity(table, variables, [m for m in METRICS if m in table.columns])
-    return table, per_segment, sensitivity_ranking(per_segment)
+    table = mark_pareto(table, *pareto_columns(table, pareto))
+    per_case = sensitivity(table, variables, study_metrics(table))
+    return table, per_case, sensitivity_ranking(per_case)

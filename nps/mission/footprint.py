@@ -31,6 +31,7 @@ import pandas as pd
 
 from nps.mission.certification import microphone_histories, reception_times
 from nps.mission.propagation import Ground, Hemisphere, Trajectory, propagate
+from nps.mission.terrain import Terrain
 from nps.noise.spectra import LEVEL_FLOOR_DB
 from nps.mission.trajectory import FlightPath, atmospheres_along
 
@@ -145,10 +146,12 @@ def mission_footprint(path: FlightPath, hemispheres: Mapping[str, Hemisphere], g
 def trajectory_footprint(trajectory: Trajectory, hemispheres: Sequence[Hemisphere], leg_of_segment: np.ndarray,
                          leg_labels: Sequence[str], grid: GroundGrid, microphones: Mapping[str, Sequence[float]],
                          speed_of_sound_mps: float, ground: Ground = Ground(),
-                         levels_db=CONTOUR_LEVELS_DB) -> Footprint:
+                         levels_db=CONTOUR_LEVELS_DB, terrain: Terrain | None = None) -> Footprint:
     """Footprint of ``trajectory`` radiating ``hemispheres`` over ``grid`` and the named ``microphones``, the
     per-leg metrics (columns leg{k}_*) over the records emitted while trajectory segment s flew leg
-    ``leg_of_segment[s]`` (legs 0 … len(leg_labels) − 1, labelled by ``leg_labels``); module doc."""
+    ``leg_of_segment[s]`` (legs 0 … len(leg_labels) − 1, labelled by ``leg_labels``); module doc. With a
+    ``terrain``, the grid's and the microphones' heights are above the local ground (z = elevation + height in
+    the tables) and the ground reflects at the elevation under each receiver."""
     leg_of_segment = np.asarray(leg_of_segment, dtype=np.int64)
     n_leg = len(leg_labels)
     if leg_of_segment.shape != np.shape(trajectory.hemisphere_index) or np.any(leg_of_segment < 0) or \
@@ -159,10 +162,17 @@ def trajectory_footprint(trajectory: Trajectory, hemispheres: Sequence[Hemispher
     points = grid.points()
     mic_names = list(microphones)
     mics = np.array([microphones[m] for m in mic_names], float).reshape(-1, 3)
+    elevation = {"points": None, "mics": None}
+    if terrain is not None:
+        for name, where in (("points", points), ("mics", mics)):
+            elevation[name] = terrain.elevation_m(where[:, 0], where[:, 1])
+            where[:, 2] += elevation[name]
     times = reception_times(trajectory, np.vstack([points, mics]), speed_of_sound_mps, RECORD_S)
     parts = []
     for start in range(0, points.shape[0], RECEIVER_CHUNK):
-        hist = propagate(hemispheres, trajectory, points[start:start + RECEIVER_CHUNK], times, speed_of_sound_mps, ground)
+        chunk = slice(start, start + RECEIVER_CHUNK)
+        hist = propagate(hemispheres, trajectory, points[chunk], times, speed_of_sound_mps, ground,
+                         ground_elevation_m=None if terrain is None else elevation["points"][chunk])
         parts.append(exposure_metrics(hist.la_db, leg_of[hist.segment], n_leg))
     grid_m = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
     grid_table = pd.DataFrame({"x_m": points[:, 0], "y_m": points[:, 1], "z_m": points[:, 2],
@@ -179,7 +189,8 @@ def trajectory_footprint(trajectory: Trajectory, hemispheres: Sequence[Hemispher
     mic_table = pd.DataFrame(columns=["microphone"])
     histories = pd.DataFrame(columns=["microphone", "time_s", "la_db", "pnlt_db", "leg"])
     if mics.size:
-        hist = propagate(hemispheres, trajectory, mics, times, speed_of_sound_mps, ground, store_bands=True)
+        hist = propagate(hemispheres, trajectory, mics, times, speed_of_sound_mps, ground, store_bands=True,
+                         ground_elevation_m=elevation["mics"])
         leg = leg_of[hist.segment]
         table, pnlt_hist = microphone_histories(hist.bands_db, hist.band_numbers, RECORD_S)
         expo = exposure_metrics(hist.la_db, leg, n_leg)

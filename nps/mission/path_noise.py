@@ -30,6 +30,7 @@ import numpy as np
 from nps.core.atmosphere import isa
 from nps.mission.footprint import CONTOUR_LEVELS_DB, Footprint, FootprintError, GroundGrid, trajectory_footprint
 from nps.mission.propagation import Ground, Hemisphere, Trajectory
+from nps.mission.terrain import Terrain
 from nps.noise.metrics import a_weighting_db
 from nps.noise.spectra import third_octave_bands
 
@@ -101,13 +102,13 @@ def path_trajectory(samples: PathSamples, n_states: int, delta_t_k: float, relat
 def path_footprint(samples: PathSamples, leg_labels: Sequence[str], hemispheres: Sequence[Hemisphere], grid: GroundGrid,
                    microphones: Mapping[str, Sequence[float]], speed_of_sound_mps: float, delta_t_k: float = 0.0,
                    relative_humidity_pct: float = 70.0, ground: Ground = Ground(), levels_db=CONTOUR_LEVELS_DB,
-                   absorption: bool = True) -> Footprint:
+                   absorption: bool = True, terrain: Terrain | None = None) -> Footprint:
     """Footprint (grid L_Amax and SEL, microphone L_A(t), PNLT(t), EPNL, per-leg metrics, contour areas) of the
-    aircraft flying ``samples`` with ``hemispheres[i]`` the source hemisphere of state i
-    (nps.mission.footprint.trajectory_footprint)."""
+    aircraft flying ``samples`` with ``hemispheres[i]`` the source hemisphere of state i, receivers over an
+    optional ``terrain`` (nps.mission.footprint.trajectory_footprint)."""
     trajectory = path_trajectory(samples, len(hemispheres), delta_t_k, relative_humidity_pct, absorption)
     return trajectory_footprint(trajectory, list(hemispheres), np.asarray(samples.leg[:-1], dtype=np.int64),
-                                leg_labels, grid, microphones, speed_of_sound_mps, ground, levels_db)
+                                leg_labels, grid, microphones, speed_of_sound_mps, ground, levels_db, terrain)
 
 
 def track_grid(position_m: np.ndarray, margin_m: float, spacing_m: float, height_m: float = 1.2) -> GroundGrid:

@@ -31,7 +31,8 @@ ray leaves the source in direction n at emission distance r_e therefore hears, p
   ray r_e, at each source band's received frequency (the frequency in the air at rest, band
   number n + δ; α is taken at the mid-band frequencies and interpolated linearly in band
   number, exact when δ = 0);
-* ground reflection G (dB) from an image source mirrored in z = 0 (same emission point and
+* ground reflection G (dB) from an image source mirrored in z = 0, or over terrain in the horizontal plane
+  at the ground's elevation under the receiver (locally flat ground, nps.mission.terrain) (same emission point and
   level for the reflected ray; ratio of path lengths a = r_1/r_2, path difference Δr = r_2 − r_1):
   band-averaged coherent sum G = 10 log10(1 + a²|Q|² + 2a|Q| ⟨cos(kΔr + φ_Q)⟩), the average of
   the cosine taken over the band's wavenumbers k ∈ [2πf_l/c, 2πf_u/c] in closed form. For a
@@ -397,7 +398,8 @@ def _ground_band_gain(b, ratio, dr, sin_psi, rr, sin_lo, k_edge, ground_kind, co
 def _ground_and_weighting(out, x0, x1, x2, s0, s1, s2, re, k_edge, ground_kind, coherent, beta, a_weight,
                           store_bands, bands_out, i, j):
     """A-weighted mean square of the receiver bands ``out`` after the ground reflection (image source mirrored
-    in z = 0); the band levels (dB) into ``bands_out[i, j]`` when ``store_bands``."""
+    in z = 0: ``x2``, ``s2`` are the receiver's and the source's heights above the receiver's ground); the band
+    levels (dB) into ``bands_out[i, j]`` when ``store_bands``."""
     floor_msp = 10.0 ** (LEVEL_FLOOR_DB / 10.0)
     ratio = 0.0
     dr = 0.0
@@ -425,10 +427,12 @@ def _ground_and_weighting(out, x0, x1, x2, s0, s1, s2, re, k_edge, ground_kind, 
 
 
 @kernel(parallel=True)
-def _propagate_kernel(rec, times, c, knot_t, knot_p, vel, hemi_of_seg, hemi_next, hemi_weight, frames, turned, h_levels, h_el, h_daz, h_radius, h_mach,
+def _propagate_kernel(rec, ground_z, times, c, knot_t, knot_p, vel, hemi_of_seg, hemi_next, hemi_weight, frames, turned, h_levels, h_el, h_daz, h_radius, h_mach,
                       alpha, a_weight, k_edge, ground_kind, coherent, beta, store_bands,
                       la_out, seg_out, bands_out):
     """Per receiver (parallel) and reception time: band levels (1), A-weighted level, segment.
+
+    ``ground_z`` (n_r,) the ground's elevation under each receiver (m; the reflecting plane, 0 on flat ground).
 
     ``hemi_of_seg``, ``hemi_next``, ``hemi_weight`` (n_seg,) the segments' hemispheres and blend weights,
     ``frames`` (n_seg, 3, 3) the rotations E → hemisphere frame, applied where ``turned`` (n_seg,) (:class:`Trajectory`);
@@ -487,8 +491,8 @@ def _propagate_kernel(rec, times, c, knot_t, knot_p, vel, hemi_of_seg, hemi_next
             delta = -10.0 * np.log10(1.0 - mr)
             _received_bands(h_levels, h, e0, we, a0, a1, wa, spread, w2, h2, e0b, web, a0b, a1b, wab, spread2,
                             alpha, k, re, delta, src, out)
-            la_ms = _ground_and_weighting(out, x0, x1, x2, s0, s1, s2, re, k_edge, ground_kind, coherent, beta,
-                                          a_weight, store_bands, bands_out, i, j)
+            la_ms = _ground_and_weighting(out, x0, x1, x2 - ground_z[i], s0, s1, s2 - ground_z[i], re, k_edge, ground_kind,
+                                          coherent, beta, a_weight, store_bands, bands_out, i, j)
             la_out[i, j] = 10.0 * np.log10(la_ms) if la_ms > floor_msp else LEVEL_FLOOR_DB
 
 
@@ -553,14 +557,20 @@ def _segment_states(trajectory: Trajectory) -> tuple[np.ndarray, ...]:
 
 
 def propagate(hemispheres, trajectory: Trajectory, receivers, time_s, speed_of_sound_mps: float,
-              ground: Ground = Ground(), store_bands: bool = False) -> ReceiverHistories:
+              ground: Ground = Ground(), store_bands: bool = False, ground_elevation_m=None) -> ReceiverHistories:
     """Levels (eq. 1 of the module doc) at ``receivers`` (n_r, 3; E, m) at reception ``time_s``.
 
     ``hemispheres``: sequence of :class:`Hemisphere` on the same grid and bands, indexed by
     ``trajectory.hemisphere_index``; ``speed_of_sound_mps``: uniform sound speed for the ray
-    times (straight rays, no refraction).
+    times (straight rays, no refraction); ``ground_elevation_m`` (n_r,), optional: the elevation of the
+    ground under each receiver (terrain, nps.mission.terrain; m, at most the receiver's z), where the ground
+    reflects as a horizontal plane (default 0: flat ground z = 0).
     """
     bands, rec = _check_inputs(hemispheres, trajectory, receivers, speed_of_sound_mps)
+    ground_z = np.zeros(rec.shape[0]) if ground_elevation_m is None else np.ascontiguousarray(ground_elevation_m, dtype=float)
+    if ground_z.shape != (rec.shape[0],) or not np.all(np.isfinite(ground_z)) or np.any(ground_z < 0.0) \
+            or np.any(ground_z > rec[:, 2]):
+        raise PropagationError("ground_elevation_m: expected one finite elevation >= 0 per receiver, at most its z")
     times = np.ascontiguousarray(time_s, dtype=float)
     if times.ndim != 1 or times.size < 1 or not np.all(np.isfinite(times)):
         raise PropagationError("time_s must be a finite 1-D array")
@@ -583,7 +593,7 @@ def propagate(hemispheres, trajectory: Trajectory, receivers, time_s, speed_of_s
     la = np.empty((n_r, n_t))
     seg = np.empty((n_r, n_t), dtype=np.int64)
     out = np.empty((n_r, n_t, bands.size) if store_bands else (1, 1, 1))
-    _propagate_kernel(np.ascontiguousarray(rec), times, c, np.ascontiguousarray(trajectory.time_s, dtype=float),
+    _propagate_kernel(np.ascontiguousarray(rec), ground_z, times, c, np.ascontiguousarray(trajectory.time_s, dtype=float),
                       np.ascontiguousarray(trajectory.position_m, dtype=float), np.ascontiguousarray(trajectory.velocity_mps),
                       np.ascontiguousarray(trajectory.hemisphere_index, dtype=np.int64), *_segment_states(trajectory), h_levels,
                       np.ascontiguousarray(hemispheres[0].elevation_deg, dtype=float),

@@ -3,25 +3,33 @@ against power with the Pareto front, and the sensitivity ranking."""
 
 from __future__ import annotations
 
+import re
 from typing import Mapping, Sequence
 
 import numpy as np
 import pandas as pd
 
+from nps.app.trade import RELATIVE_METRICS, case_columns
 from nps.plots import save_figure
 
 MAX_LEVELS = 8  # values of a variable up to which the trends figure draws main-effect lines
 LABELS = {"max_dba_db": "max. OASPL(A) (dBA)", "max_oaspl_db": "max. OASPL (dB)", "max_bvispl_db": "max. BVISPL (dB)",
-          "power_W": "rotor power (kW)"}
+          "power_W": "rotor power (kW)", "energy_J": "rotor energy (MJ)", "duration_s": "duration (s)",
+          "max_sel_db": "max. SEL at the microphones (dBA)"}
+SCALES = {"power_W": 1e-3, "energy_J": 1e-6}  # to the units of LABELS
 
 
 def _label(metric: str) -> str:
+    """Axis label of a trade-table column: :data:`LABELS`, a procedure's per-microphone level, or the column."""
+    at = re.fullmatch(r"(sel|lamax|epnl)_(\w+)_db", metric)
+    if metric not in LABELS and at:
+        name, unit = {"sel": ("SEL", "dBA"), "lamax": ("L_Amax", "dBA"), "epnl": ("EPNL", "EPNdB")}[at.group(1)]
+        return f"{name} at {at.group(2)} ({unit})"
     return LABELS.get(metric, metric)
 
 
 def _values(table: pd.DataFrame, metric: str) -> np.ndarray:
-    values = table[metric].to_numpy(float)
-    return values / 1e3 if metric == "power_W" else values
+    return table[metric].to_numpy(float) * SCALES.get(metric, 1.0)
 
 
 def _broadband_switched(group: pd.DataFrame) -> pd.Series:
@@ -34,8 +42,10 @@ def _broadband_switched(group: pd.DataFrame) -> pd.Series:
     return combination != combination.mode().iloc[0]
 
 
-def _case_label(aircraft: str, segment: str, name: str, n_aircraft: int) -> str:
-    return f"{aircraft} {segment} ({name})" if n_aircraft > 1 else f"{segment} ({name})"
+def _case_label(aircraft: str, case: str, name: str, n_aircraft: int) -> str:
+    """A case's label: the segment with its mission name, or the path's name alone (its description is a sentence)."""
+    text = f"{case} ({name})" if case != name else case
+    return f"{aircraft} {text}" if n_aircraft > 1 else text
 
 
 def metrics_against_variables(table: pd.DataFrame, variables: Sequence[str], metrics: Sequence[str], title: str, path) -> None:
@@ -50,14 +60,15 @@ def metrics_against_variables(table: pd.DataFrame, variables: Sequence[str], met
     fig, axes = plt.subplots(len(metrics), len(variables), figsize=(4.2 * len(variables) + 2.5, 2.8 * len(metrics)),
                              squeeze=False, sharex="col")
     colours = plt.get_cmap("tab10")
-    cases = list(table.groupby(["aircraft", "segment"], sort=False))
+    key, name = case_columns(table)
+    cases = list(table.groupby(["aircraft", key], sort=False))
     n_aircraft = table["aircraft"].nunique()
     any_switch = False
     for i, metric in enumerate(metrics):
         for j, variable in enumerate(variables):
             ax = axes[i, j]
             for k, ((aircraft, segment), group) in enumerate(cases):
-                label = _case_label(aircraft, segment, group["segment_name"].iloc[0], n_aircraft)
+                label = _case_label(aircraft, segment, group[name].iloc[0] if key == "segment" else segment, n_aircraft)
                 switched = _broadband_switched(group)
                 any_switch |= bool(switched.any())
                 if group[variable].nunique() > MAX_LEVELS:  # a sampled design: every design, no main effect
@@ -73,6 +84,7 @@ def metrics_against_variables(table: pd.DataFrame, variables: Sequence[str], met
             if _integer_valued(table[variable]):
                 ax.xaxis.set_major_locator(MaxNLocator(integer=True))
             ax.grid(alpha=0.3)
+            ax.ticklabel_format(axis="y", useOffset=False)
             if j == 0:
                 ax.set_ylabel(_label(metric))
             if i == len(metrics) - 1:
@@ -97,12 +109,13 @@ def _integer_valued(values: pd.Series) -> bool:
     return bool(np.all(numbers == np.round(numbers)))
 
 
-def pareto_figure(table: pd.DataFrame, colour_by: str, noise: str, title: str, path) -> None:
-    """Noise against power, one panel per aircraft × segment; designs coloured by ``colour_by``, the Pareto
-    front (``pareto`` column) joined and ringed."""
+def pareto_figure(table: pd.DataFrame, colour_by: str, noise: str, cost: str, title: str, path) -> None:
+    """``noise`` against ``cost``, one panel per aircraft × segment (× path); designs coloured by ``colour_by``,
+    the Pareto front (``pareto`` column) joined and ringed."""
     import matplotlib.pyplot as plt
 
-    cases = list(table.groupby(["aircraft", "segment"], sort=False))
+    key, name = case_columns(table)
+    cases = list(table.groupby(["aircraft", key], sort=False))
     ncols = min(3, len(cases))
     nrows = int(np.ceil(len(cases) / ncols))
     fig, axes = plt.subplots(nrows, ncols, figsize=(4.8 * ncols + 1.0, 3.8 * nrows), squeeze=False, layout="constrained")
@@ -112,15 +125,15 @@ def pareto_figure(table: pd.DataFrame, colour_by: str, noise: str, title: str, p
     colour_values = pd.Series(np.asarray(codes, float), index=table.index)  # text and booleans: their sorted levels
     norm = plt.Normalize(colour_values.min(), colour_values.max())
     scatter = None
-    for ax, ((aircraft, segment), group) in zip(axes.flat, cases):
-        power, level = _values(group, "power_W"), group[noise].to_numpy(float)
-        scatter = ax.scatter(power, level, c=colour_values[group.index].to_numpy(), cmap="viridis", norm=norm, s=22)
+    for ax, ((aircraft, case), group) in zip(axes.flat, cases):
+        x, level = _values(group, cost), group[noise].to_numpy(float)
+        scatter = ax.scatter(x, level, c=colour_values[group.index].to_numpy(), cmap="viridis", norm=norm, s=22)
         front = group["pareto"].to_numpy(bool)
-        order = np.argsort(power[front])
-        ax.plot(power[front][order], level[front][order], "-", color="crimson", lw=1.2, label="Pareto front")
-        ax.scatter(power[front], level[front], facecolors="none", edgecolors="crimson", s=70, lw=1.2)
-        ax.set_title(_case_label(aircraft, segment, group["segment_name"].iloc[0], n_aircraft), fontsize=9)
-        ax.set_xlabel(_label("power_W"))
+        order = np.argsort(x[front])
+        ax.plot(x[front][order], level[front][order], "-", color="crimson", lw=1.2, label="Pareto front")
+        ax.scatter(x[front], level[front], facecolors="none", edgecolors="crimson", s=70, lw=1.2)
+        ax.set_title(_case_label(aircraft, case, group[name].iloc[0] if key == "segment" else case, n_aircraft), fontsize=9)
+        ax.set_xlabel(_label(cost))
         ax.set_ylabel(_label(noise))
         ax.grid(alpha=0.3)
     for ax in list(axes.flat)[len(cases):]:
@@ -134,7 +147,7 @@ def pareto_figure(table: pd.DataFrame, colour_by: str, noise: str, title: str, p
 
 
 def sensitivity_figure(ranking: pd.DataFrame, per_segment: pd.DataFrame, metrics: Sequence[str], title: str, path) -> None:
-    """One panel per metric: each variable's change per +10 % (bar: mean over segments; dots: segments),
+    """One panel per metric: each variable's change per +10 % (bar: mean over segments or paths; dots: each),
     variables in ranking order (largest magnitude on top)."""
     import matplotlib.pyplot as plt
 
@@ -150,7 +163,7 @@ def sensitivity_figure(ranking: pd.DataFrame, per_segment: pd.DataFrame, metrics
             ax.plot(dots.to_numpy(), np.full(len(dots), y), "k.", ms=4)
         ax.set_yticks(positions, rows.index)
         ax.axvline(0.0, color="k", lw=0.8)
-        unit = "%" if metric == "power_W" else "dB"
+        unit = "%" if metric in RELATIVE_METRICS else "dB"
         ax.set_xlabel(f"change per +10 % ({unit})")
         ax.set_title(_label(metric), fontsize=9)
         ax.grid(axis="x", alpha=0.3)

@@ -42,6 +42,7 @@ from nps.app.config import Campaign
 from nps.app.io import read_metadata, read_table, rotor_path, write_table
 from nps.app.plan import CaseConfig, job_digest, metrics_reads_disks, stage_params
 from nps.app.trade import case_row, certification_columns, footprint_columns
+from nps.app.trade import procedure_row as trade_procedure_row
 from nps.app.validity import ValidityError
 from nps.rotor.bet import TrimError
 from nps.rotor.trim import AircraftTrimError
@@ -223,37 +224,68 @@ def mission_product(stage: str, campaign: Campaign, aircraft: str, cache: StageC
     return cache.run(stage, hemispheres, {**stage_params(stage, case), "aircraft": aircraft})
 
 
-def path_product(campaign: Campaign, path: str, cache: StageCache) -> dict[str, Artifact]:
+def path_product(campaign: Campaign, path: str, cache: StageCache) -> dict:
     """The noise of ``path`` (a path of ``campaign.paths``, :meth:`nps.app.config.Campaign.with_paths`): the
     ``path`` stage, every state's chain with its source hemisphere (:func:`run_chain`, the state key as the
-    segment) and ``path_footprint``, with the workflow's params (rules path and path_footprint)."""
+    segment) and ``path_footprint``, with the workflow's params (rules path and path_footprint). Returns
+    ``{"path": Artifact, "footprint": Artifact, "chains": {state key: chain}}``."""
     spec = campaign.paths[path]
     aircraft = spec["aircraft"]
     case = CaseConfig.from_campaign(campaign, aircraft)
     named = {"aircraft": aircraft, "path_config": spec, "path": path}
     history = cache.run("path", {}, {**stage_params("path", case), **named})
-    hemispheres = {}
-    for key in campaign.path_keys[path]:
-        chain = run_chain(campaign, aircraft, key, cache, [], source_set=True)
-        hemispheres[f"hemisphere_{key}"] = (chain["source_hemisphere"], "hemisphere")
+    chains = {key: run_chain(campaign, aircraft, key, cache, [], source_set=True) for key in campaign.path_keys[path]}
+    hemispheres = {f"hemisphere_{key}": (chain["source_hemisphere"], "hemisphere") for key, chain in chains.items()}
     footprint = cache.run("path_footprint", {"history": (history, "history"), **hemispheres},
                           {**stage_params("path_footprint", case), **named})
-    return {"path": history, "footprint": footprint}
+    return {"path": history, "footprint": footprint, "chains": chains}
+
+
+def procedure_row(campaign: Campaign, path: str, design_values: dict, cache: StageCache) -> pd.DataFrame:
+    """The trade-table row of a flown path (:func:`path_product`, :func:`nps.app.trade.procedure_row`): the
+    states' rotor power from their loads summaries, the path's duration and distance from its legs."""
+    from nps.mission.paths import flight_path_history, path_spec
+
+    spec = campaign.paths[path]
+    product = path_product(campaign, path, cache)
+    rotors = campaign.rotor_names(spec["aircraft"])
+    power = {key: sum(float(table.loc[table["quantity"] == "power_W", "value"].iloc[0])
+                      for table in (read_table(rotor_path(chain["loads"].paths["loads"], rotor, "_summary")) for rotor in rotors))
+             for key, chain in product["chains"].items()}
+    legs, _ = flight_path_history(path_spec(spec), campaign.config["paths"]["dt_s"])
+    duration = legs[-1].t0_s + legs[-1].duration_s
+    distance = sum(leg.speed0_mps * leg.duration_s + 0.5 * leg.accel_mps2 * leg.duration_s**2 for leg in legs)
+    footprint = product["footprint"].paths
+    artifacts = [product["path"], *(artifact for chain in product["chains"].values() for artifact in (chain["trim"], chain["loads"]))]
+    return trade_procedure_row(spec, design_values, read_table(product["path"].paths["history"]), power, duration, distance,
+                               read_table(footprint["microphones"]), read_table(footprint["areas"]), warnings_of(artifacts))
 
 
 def _logged(cache: StageCache, start: int, prefix: str) -> tuple[dict, list[str]]:
-    """Stage → digest of the cache entries used since ``start``, and their report lines."""
+    """Stage → digest of the cache entries used since ``start`` (a stage run more than once, as per path state:
+    the list of its digests), and their report lines."""
     entries = cache.log[start:]
-    return ({stage: digest for stage, digest, _, _ in entries},
+    used: dict = {}
+    for stage, digest, _, _ in entries:
+        used.setdefault(stage, []).append(digest)
+    return ({stage: digests[0] if len(digests) == 1 else digests for stage, digests in used.items()},
             [f"{prefix} {stage:18s} {digest} {what:8s} {seconds:7.2f} s" for stage, digest, what, seconds in entries])
 
 
 def design_rows(campaign: Campaign, aircraft: str, segments: list[str], design_values: dict, observer_sets: list[str],
                 products: list[str], cache: StageCache) -> tuple[pd.DataFrame, dict, list[str]]:
     """The trade-table rows of a design's aircraft in ``segments``, with the aircraft-level ``products``
-    (certification, footprint); the stage digests (part → stage → digest) and the report lines. Raises one
+    (certification, footprint), or with the ``procedure`` product one row per path of the campaign the aircraft
+    flies (:func:`procedure_row`); the stage digests (part → stage → digest) and the report lines. Raises one
     of :data:`REFUSALS` for a design the validity envelope or a trim refuses."""
     rows, digests, report = [], {}, []
+    if "procedure" in products:  # a procedure study: a row per path the aircraft flies
+        for path in (name for name, spec in campaign.paths.items() if spec["aircraft"] == aircraft):
+            start = len(cache.log)
+            rows.append(procedure_row(campaign, path, design_values, cache))
+            digests[path], lines = _logged(cache, start, path)
+            report += lines
+        return pd.concat(rows, ignore_index=True), digests, report
     for segment in segments:
         start = len(cache.log)
         outcome = evaluate(campaign, aircraft, segment, design_values, cache, observer_sets)

@@ -3,7 +3,8 @@
 The path's time history (stage ``path``) is flown as chords, each radiating the blend of its bracketing trim
 states' source hemispheres (stage ``source_hemisphere`` per state, the states run as segments named by their
 keys), to the path's receivers: a ground grid (L_Amax, SEL, per leg and for the path; contour areas) and named
-microphones (L_A(t), PNLT(t), SEL, L_Amax, EPNL).
+microphones (L_A(t), PNLT(t), SEL, L_Amax, EPNL), over flat ground or the path's terrain (``receivers.terrain``:
+receivers stand above the local ground, which reflects at its elevation; nps.mission.terrain).
 
 inputs: ``history`` (path_history.parquet), ``hemisphere_<key>`` for every state key of the history.
 outputs: ``grid``, ``microphones``, ``histories``, ``areas`` (Parquet, the columns of the mission footprint's:
@@ -23,6 +24,7 @@ from nps.core.atmosphere import isa
 from nps.mission.footprint import GroundGrid
 from nps.mission.path_noise import PathSamples, source_level_db, path_footprint, track_grid
 from nps.mission.source_hemisphere import hemisphere_from_table
+from nps.mission.terrain import Terrain
 from nps.stages.footprint import ground_model
 
 HISTORY_COLUMNS = ("time_s", "leg", "x_m", "y_m", "z_m", "heading_rad", "flight_path_rad", "effective_flight_path_rad",
@@ -57,9 +59,10 @@ def run(inputs: dict, outputs: dict, params: dict) -> str:
         grid = track_grid(samples.position_m, float(receivers["margin_m"]), float(receivers["spacing_m"]))
     c = isa(0.0, atm["isa_delta_K"], atm["relative_humidity_pct"]).speed_of_sound_mps
     legs = [f"leg{k}" for k in range(int(samples.leg.max()) + 1)]
+    terrain = Terrain.from_config(receivers["terrain"]) if "terrain" in receivers else None
     fp = path_footprint(samples, legs, hemispheres, grid, {k: tuple(v) for k, v in receivers["microphones"].items()}, c,
                         atm["isa_delta_K"], atm["relative_humidity_pct"], ground_model(params["ground"]),
-                        absorption=bool(params["absorption"]))
+                        absorption=bool(params["absorption"]), terrain=terrain)
     meta = {"aircraft": aircraft, "path": path["name"], "states": keys, "legs": legs,
             "grid": {"x_range_m": list(grid.x_range_m), "y_range_m": list(grid.y_range_m), "spacing_m": grid.spacing_m,
                      "height_m": grid.height_m},

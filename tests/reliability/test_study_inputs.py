@@ -30,6 +30,9 @@ MAIN = "aircraft.helicopter.rotors.main"
 OMEGA, BLADES, CHORD, TWIST = f"{MAIN}.omega_rad_s", f"{MAIN}.n_blades", f"{MAIN}.chord_m", f"{MAIN}.twist_deg"
 DOWNLOAD = "aircraft.helicopter.hover_download_fraction"  # base value 0.0 (schema default)
 OMEGAS = {"path": OMEGA, "label": "omega", "values": [26.0, 28.0]}
+DESCENT = "paths.helicopter_approach_6deg.legs.1"  # the 6 deg approach's descent leg
+PROCEDURE_BASE = {"aircraft": ["helicopter"], "paths": ["helicopter_approach_6deg"]}
+PROCEDURE = {"base": PROCEDURE_BASE, "products": ["procedure"]}
 
 
 @pytest.fixture()
@@ -162,6 +165,42 @@ REFUSED = [
     ("factorial_above_the_cost_limit", {"variables": [{"path": OMEGA, "range": {"low": 24.0, "high": 30.0, "num": 100}},
                                                       {"path": f"{MAIN}.radius_m", "range": {"low": 7.0, "high": 8.0, "num": 100}}]},
      "variables", "10000 designs × 1 aircraft × 2 segments = 20000 cases, estimated"),
+    # procedure studies (base.paths, products [procedure])
+    ("path_field_without_base_paths", {"variables": [{"path": f"{DESCENT}.flight_path_deg", "values": [-9.0]}]},
+     "variables[0].path", "expected paths.<path>.<field> of a path of base.paths ([])"),
+    ("procedure_without_paths", {"variables": [OMEGAS], "products": ["procedure"]},
+     "products", "a procedure study flies base.paths and has one row per design x path: expected products [procedure]"),
+    ("paths_without_procedure", {"base": PROCEDURE_BASE, "variables": [OMEGAS]},
+     "products", "got ['performance', 'noise'] and base.paths ['helicopter_approach_6deg']"),
+    ("procedure_with_other_products", {"base": PROCEDURE_BASE, "variables": [OMEGAS], "products": ["procedure", "noise"]},
+     "products", "expected products [procedure] with base.paths"),
+    ("path_file_missing", {"base": {"aircraft": ["helicopter"], "paths": ["helicopter_nowhere"]}, "variables": [OMEGAS],
+                           "products": ["procedure"]},
+     "base.paths[0]", "expected a flight path of"),
+    ("path_of_another_aircraft", {"base": {"aircraft": ["coaxial"], "paths": ["helicopter_approach_6deg"]},
+                                  "variables": [{"path": "aircraft.coaxial.gross_weight_kg", "values": [2500.0]}],
+                                  "products": ["procedure"]},
+     "base.paths[0]", "flies 'helicopter': expected one of the study's aircraft ['coaxial']"),
+    ("paths_with_other_microphones", {"base": {"aircraft": ["hexacopter", "helicopter"],
+                                               "paths": ["helicopter_approach_6deg", "hexacopter_transition"]},
+                                      "variables": [OMEGAS], "products": ["procedure"]},
+     "base.paths", "name the microphones ['final', 'north', 'south', 'threshold', 'village'] and ['climb', 'cruise', "
+     "'pad_side']: expected the same microphones"),
+    ("path_value_the_schema_refuses", {**PROCEDURE, "variables": [{"path": f"{DESCENT}.flight_path_deg", "values": [-95.0]}]},
+     "variables[0].values[0]", f"expected a number >= -89, got -95.0 for {DESCENT}.flight_path_deg"),
+    ("path_field_not_written", {**PROCEDURE, "variables": [{"path": f"{DESCENT}.end_rotor_speed_fraction", "values": [0.9]}]},
+     "variables[0].path", "no field 'end_rotor_speed_fraction'"),
+    ("path_leg_beyond_the_legs", {**PROCEDURE, "variables": [{"path": "paths.helicopter_approach_6deg.legs.5.flight_path_deg",
+                                                               "values": [-9.0]}]},
+     "variables[0].path", "no field '5'"),
+    ("procedure_column_as_label", {**PROCEDURE, "variables": [{"path": f"{DESCENT}.flight_path_deg", "label": "sel_village_db",
+                                                                "values": [-9.0]}]},
+     "variables[0].label", "'sel_village_db' is a trade-table column"),
+    ("pareto_column_unknown", {**PROCEDURE, "variables": [{"path": f"{DESCENT}.flight_path_deg", "values": [-9.0]}],
+                               "pareto": {"noise": "sel_nowhere_db"}},
+     "pareto.noise", "expected a trade-table column of the study's products (distance_m, duration_s, energy_J, "),
+    ("pareto_column_of_another_product", {"variables": [OMEGAS], "pareto": {"cost": "energy_J"}},
+     "pareto.cost", "got 'energy_J'"),
 ]
 
 
@@ -174,6 +213,31 @@ def test_refused_in_one_line_naming_file_and_field(root, case, spec, field, expe
     message = refusal(root, spec)
     assert message.startswith(f"{root / 'config/studies/s.yaml'}: {field}: "), message
     assert expected in message, message
+
+
+def test_procedure_variants_fly_their_own_paths(root):
+    """A path field and a field linked to it set in each variant's path, which is validated and planned again:
+    the 9 deg descent (its leg shortened as 1/γ to hold the height drop) passes other trim states than the 6 deg."""
+    angle = f"{DESCENT}.flight_path_deg"
+    path = write(root, **PROCEDURE, variables=[{"path": angle, "label": "descent.deg", "values": [-6.0, -9.0]}],
+                 linked=[{"path": f"{DESCENT}.straight.distance_m", "follows": angle, "exponent": -1}])
+    study = load_study(path, root)
+    assert study.aircraft == ["helicopter"]
+    six, nine = (d.campaign for d in study.designs)
+    assert six.paths == study.base.paths
+    descent = nine.paths["helicopter_approach_6deg"]["legs"][1]
+    assert descent["flight_path_deg"] == -9.0 and descent["straight"]["distance_m"] == pytest.approx(1250.0 * 6.0 / 9.0)
+    assert set(nine.path_keys["helicopter_approach_6deg"]) != set(six.path_keys["helicopter_approach_6deg"])
+
+
+def test_procedure_variant_the_path_limits_refuse_names_variant_and_path_file(root):
+    path = write(root, **PROCEDURE, variables=[{"path": f"{DESCENT}.flight_path_deg", "label": "descent.deg", "values": [-20.0]}])
+    with pytest.raises(ConfigError) as error:
+        load_study(path, root)
+    message = str(error.value)
+    assert message.startswith(f"{path}: variant {{'descent.deg': -20.0}}: "
+                              f"{root / 'config/paths/helicopter_approach_6deg.yaml'}: legs[1]"), message
+    assert "15" in message and "Traceback" not in message
 
 
 def test_error_in_the_base_configuration_names_the_study_and_the_config(root):

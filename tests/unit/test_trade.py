@@ -84,3 +84,56 @@ def test_trends_mark_the_designs_whose_broadband_model_differs_and_count_blades_
     path = tmp_path / "trends.png"
     figures.metrics_against_variables(table, ["main.omega_rad_s", "main.n_blades"], ["max_dba_db"], "t", path)
     assert path.stat().st_size > 0
+
+
+def test_path_energy_is_the_integral_of_the_blended_power():
+    """Power blended between two states as the hemispheres are, P(t) = 100 kW + 20 kW t/s, sampled at 0.5 s
+    up to 9.5 s of a 9.8 s path: the trapezoid is exact for a linear power, the last 0.3 s hold P(9.5 s)."""
+    from nps.app.trade import path_energy_J, state_power_history_W
+
+    time_s = np.arange(0.0, 9.51, 0.5)
+    weight = time_s / 10.0  # from state a (100 kW) toward state b (300 kW)
+    history = pd.DataFrame({"time_s": time_s, "state": "a", "neighbour": "b", "neighbour_weight": weight})
+    power = state_power_history_W(history, {"a": 1.0e5, "b": 3.0e5})
+    np.testing.assert_allclose(power, 1.0e5 + 2.0e4 * time_s, rtol=1e-15)
+    energy = path_energy_J(time_s, power, 9.8)
+    assert energy == pytest.approx(1.0e5 * 9.5 + 1.0e4 * 9.5**2 + (1.0e5 + 2.0e4 * 9.5) * 0.3, rel=1e-14)
+
+
+def test_procedure_row_has_each_microphone_and_its_maxima():
+    from nps.app.trade import procedure_row
+
+    history = pd.DataFrame({"time_s": [0.0, 1.0], "state": ["s1", "s2"], "neighbour": ["s2", "s2"],
+                            "neighbour_weight": [0.0, 0.0]})
+    microphones = pd.DataFrame({"microphone": ["village", "final"], "sel_db": [80.0, 84.0], "lamax_db": [70.0, 75.0],
+                                "epnl_db": [85.0, 88.0]})
+    areas = pd.DataFrame({"metric": ["sel_db"], "level_db": [80.0], "area_km2": [0.5], "open": [False]})
+    path = {"name": "p", "aircraft": "heli", "description": "an approach"}
+    row = procedure_row(path, {"design": "d1", "x.y": 2.0}, history, {"s1": 2.0e5, "s2": 4.0e5}, 1.0, 30.0,
+                        microphones, areas, [])
+    assert row.iloc[0].to_dict() == {
+        "design": "d1", "x.y": 2.0, "aircraft": "heli", "path": "p", "path_description": "an approach", "duration_s": 1.0,
+        "distance_m": 30.0, "energy_J": 3.0e5, "n_states": 2, "sel_village_db": 80.0, "sel_final_db": 84.0,
+        "max_sel_db": 84.0, "lamax_village_db": 70.0, "lamax_final_db": 75.0, "max_lamax_db": 75.0,
+        "epnl_village_db": 85.0, "epnl_final_db": 88.0, "max_epnl_db": 88.0, "sel_db_80db_area_km2": 0.5,
+        "footprint_open": "", "validity_warnings": ""}
+    with pytest.raises(ValueError, match="sel_final_db"):
+        procedure_row(path, {"design": "d1", "sel_final_db": 1.0}, history, {"s1": 1.0, "s2": 1.0}, 1.0, 30.0,
+                      microphones, areas, [])
+
+
+def test_procedure_trade_table_marks_the_front_of_its_pareto_columns():
+    """Rows of a procedure study: grouped per aircraft × path, the front of the given columns, energy and
+    duration sensitivities in percent (fitted as logarithms, like power)."""
+    rows = [pd.DataFrame({"design": [f"d{i}"], "v": [v], "aircraft": ["heli"], "path": ["p"], "path_description": ["a"],
+                          "sel_village_db": [s], "energy_J": [e], "duration_s": [t]})
+            for i, (v, s, e, t) in enumerate([(26.0, 80.0, 1.0e8, 120.0), (30.0, 81.0, 0.9e8, 110.0), (34.0, 83.0, 0.95e8, 100.0)])]
+    table, per_path, _ = trade_tables(rows, ["d0", "d1", "d2"], {"v": 30.0}, {"noise": "sel_village_db", "cost": "duration_s"})
+    assert table["pareto"].tolist() == [True, True, True]
+    table, _, _ = trade_tables(rows, ["d0", "d1", "d2"], {"v": 30.0}, {"noise": "sel_village_db", "cost": "energy_J"})
+    assert table["pareto"].tolist() == [True, True, False]  # d2 is beaten by d1 in both SEL and energy
+    assert list(per_path.columns[:2]) == ["aircraft", "path"]
+    units = per_path.set_index("metric")["unit"]
+    assert units["energy_J"] == units["duration_s"] == "%" and units["sel_village_db"] == "dB"
+    slope = np.polyfit(np.log([26.0, 30.0, 34.0]), np.log([120.0, 110.0, 100.0]), 1)[0]
+    assert per_path.set_index("metric").loc["duration_s", "change_per_10pct"] == pytest.approx(100 * (1.1**slope - 1), rel=1e-9)

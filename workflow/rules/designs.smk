@@ -51,6 +51,7 @@ rule trade:
         variables=lambda wildcards: {v.label: v.base_value for v in design_study(wildcards.study).variables},
         designs=lambda wildcards: [d.id for d in design_study(wildcards.study).designs],
         dropped=lambda wildcards: [list(item) for item in design_study(wildcards.study).dropped],
+        pareto=lambda wildcards: design_study(wildcards.study).spec.get("pareto", {}),
         code=code("trade"),
     log:
         log_path("trade", "{study}"),
