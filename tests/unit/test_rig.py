@@ -175,11 +175,15 @@ def test_rotor_command_with_loads_only_writes_the_loads_and_no_acoustics(tmp_pat
 def test_bundled_rigs_validate():
     rigs = {p.stem: load_rig(p) for p in sorted((REPO / "config/rigs").glob("*.yaml"))}
     hart_ii = {"hart_ii_bl", "hart_ii_bl_measured", "hart_ii_mn_measured", "hart_ii_mv_measured"}
-    assert set(rigs) == hart_ii | {"itr_hover", "main_tail_rig"}
+    assert set(rigs) == hart_ii | {"itr_hover", "main_tail_rig", "bo105_main_tail_rig"}
     for name in hart_ii:
         assert rigs[name]["microphones_T"].shape == (221, 3)
         assert np.all(rigs[name]["microphones_T"][:, 2] == -2.215)
     assert rigs["itr_hover"]["rotor_config"]["control"] == "fixed"
+    # the Bo105-type pair: HART-II main rotor, a teetering delta3 45 deg tail rotor at exactly 5x (common period 1:5)
+    main, tail = rigs["bo105_main_tail_rig"]["rotor_configs"]
+    assert main["radius_m"] == 2.0 and (tail["hub"], tail["n_blades"], tail["delta3_deg"]) == ("teetering", 2, 45.0)
+    assert tail["omega_rad_s"] == 5.0 * main["omega_rad_s"] and tail["radius_m"] == pytest.approx(0.19 * main["radius_m"])
 
 
 def test_hart_ii_rigs_carry_their_own_wake_and_acoustics():
