@@ -40,6 +40,7 @@ from typing import Mapping
 
 import numpy as np
 from scipy.optimize import brentq
+from scipy.special import fresnel
 
 from nps.rotor.trim import G0_M_S2
 
@@ -106,6 +107,7 @@ class PathSpec:
     flight_path_change_g: float
     limits: PathLimits
     legs: tuple[LegSpec, ...]
+    roll_rate_rad_s: float = math.inf  # bank rate of a turn's roll-in and roll-out (inf: instantaneous)
 
 
 def _rad(value):
@@ -132,14 +134,15 @@ def path_spec(document: Mapping) -> PathSpec:
         PathLimits(math.radians(limits["max_bank_deg"]), float(limits["min_load_factor"]), float(limits["max_load_factor"]),
                    float(limits["max_longitudinal_acceleration_mps2"]), math.radians(limits["max_climb_angle_deg"]),
                    math.radians(limits["max_descent_angle_deg"])),
-        tuple(legs))
+        tuple(legs), math.radians(document["roll_rate_deg_s"]))
 
 
 @dataclass(frozen=True)
 class Leg:
     """One solved leg: start time, duration (s), start position (m, E), speed V_0 and a_x, entering and
     final flight-path angles with the rate q (rad/s) and duration t_γ of the change, start heading, turn
-    radius (inf on a straight leg) and side σ, rotor-speed fractions at start and end."""
+    radius (inf on a straight leg) and side σ, rotor-speed fractions at start and end; a turn's horizontal arc
+    (m) and the length L_r (m) of its roll-in and of its roll-out (0: instantaneous, :func:`_turn_track`)."""
 
     index: int
     kind: str
@@ -157,6 +160,8 @@ class Leg:
     side: int
     fraction0: float
     fraction1: float
+    arc_m: float = 0.0
+    roll_length_m: float = 0.0
 
 
 def _ramp(v0: float, a: float, gamma0: float, q: float, tau: np.ndarray) -> np.ndarray:
@@ -187,6 +192,41 @@ def _flight_path(leg: Leg, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return gamma, np.where(ramping, leg.gamma_rate_rad_s, 0.0)
 
 
+def _clothoid(s: np.ndarray, k: float, side: int) -> np.ndarray:
+    """∫_0^s e^{iσ k u²} du (complex; Fresnel integrals C, S of t = s √(2k/π))."""
+    scale = math.sqrt(math.pi / (2.0 * k))
+    sine, cosine = fresnel(np.asarray(s, float) / scale)
+    return scale * (cosine + 1j * side * sine)
+
+
+def _turn_track(leg: Leg, s_h: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Heading ψ (rad), horizontal displacement from the leg's start (complex x + i y, m, E) and curvature κ (1/m)
+    at horizontal arc ``s_h`` of a turn that rolls in and out over L_r: κ rises linearly in arc from 0 to 1/R
+    over the first L_r (a clothoid, ψ = ψ₀ + σ k s², k = 1/(2 R L_r)), stays 1/R, and falls back to 0 over the
+    last L_r; the heading change of the whole arc R|Δψ| + L_r is Δψ. Closed form with Fresnel integrals."""
+    radius, length, side, psi0 = leg.radius_m, leg.roll_length_m, leg.side, leg.heading0_rad
+    k = 1.0 / (2.0 * radius * length)
+    s1, s2 = length, leg.arc_m - length
+    s = np.clip(np.asarray(s_h, float), 0.0, leg.arc_m)
+    psi1 = psi0 + side * length / (2.0 * radius)
+    psi2 = psi1 + side * (s2 - s1) / radius
+    psi_end = psi2 + side * length / (2.0 * radius)
+    p1 = np.exp(1j * psi0) * _clothoid(np.array(s1), k, side)
+    p2 = p1 - 1j * side * radius * (np.exp(1j * psi2) - np.exp(1j * psi1))
+    rolling_in, rolling_out = s < s1, s > s2
+    u_in, u_out = np.minimum(s, s1), np.maximum(s - s2, 0.0)
+    circle = np.clip(s, s1, s2) - s1
+    heading = np.where(rolling_in, psi0 + side * k * u_in**2,
+                       np.where(rolling_out, psi_end - side * k * (length - u_out)**2, psi1 + side * circle / radius))
+    in_track = np.exp(1j * psi0) * _clothoid(u_in, k, side)
+    circle_track = p1 - 1j * side * radius * (np.exp(1j * (psi1 + side * circle / radius)) - np.exp(1j * psi1))
+    # roll-out: ψ = ψ_end − σ k (L_r − u)², its integral the conjugate clothoid between L_r − u and L_r
+    out_track = p2 + np.exp(1j * psi_end) * np.conj(_clothoid(np.array(length), k, side) - _clothoid(length - u_out, k, side))
+    track = np.where(rolling_in, in_track, np.where(rolling_out, out_track, circle_track))
+    curvature = np.where(rolling_in, u_in, np.where(rolling_out, length - u_out, length)) / (radius * length)
+    return heading, track, curvature
+
+
 def leg_kinematics(leg: Leg, tau) -> dict[str, np.ndarray]:
     """Position, velocity, acceleration (m, m/s, m/s²; (n, 3) in E), speed, a_x, heading, γ and rotor-speed
     fraction of a leg at times τ since its start."""
@@ -197,7 +237,11 @@ def leg_kinematics(leg: Leg, tau) -> dict[str, np.ndarray]:
     gamma, gamma_rate = _flight_path(leg, tau)
     x0, y0, z0 = leg.position0_m
     psi0 = leg.heading0_rad
-    if leg.kind == "turn":
+    if leg.kind == "turn" and leg.roll_length_m > 0.0:
+        heading, track, curvature = _turn_track(leg, s_h)
+        x, y = x0 + track.real, y0 + track.imag
+        heading_rate = leg.side * speed * np.cos(gamma) * curvature
+    elif leg.kind == "turn":
         heading = psi0 + leg.side * s_h / leg.radius_m
         x = x0 + leg.side * leg.radius_m * (np.sin(heading) - math.sin(psi0))
         y = y0 - leg.side * leg.radius_m * (np.cos(heading) - math.cos(psi0))
@@ -282,8 +326,9 @@ def _turn_radius(spec: LegSpec, speed0: float, where: str) -> float:
     return speed0 * speed0 / (G0_M_S2 * math.tan(spec.bank_rad))
 
 
-def _build(index: int, spec: LegSpec, entry: _Entry, gamma1: float, change_g: float, where: str) -> Leg:
-    """The leg flying ``spec`` from ``entry`` with final flight-path angle ``gamma1``."""
+def _build(index: int, spec: LegSpec, entry: _Entry, gamma1: float, change_g: float, roll_rate: float, where: str) -> Leg:
+    """The leg flying ``spec`` from ``entry`` with final flight-path angle ``gamma1`` (``roll_rate``: a turn's bank
+    rate, rad/s)."""
     speed0, gamma0 = entry.speed_mps, entry.flight_path_rad
     change = gamma1 - gamma0
     if change != 0.0 and speed0 <= 0.0:
@@ -293,16 +338,34 @@ def _build(index: int, spec: LegSpec, entry: _Entry, gamma1: float, change_g: fl
     t_gamma = abs(change / rate) if change != 0.0 else 0.0
     duration, a = _leg_time(spec, speed0, where)
     fraction1 = entry.fraction if spec.end_rotor_speed_fraction is None else float(spec.end_rotor_speed_fraction)
-    radius, side = math.inf, 0
+    radius, side, arc, roll = math.inf, 0, 0.0, 0.0
     if spec.kind == "turn":
         if spec.heading_change_rad == 0.0:
             raise PathError(f"{where}.turn.heading_change_deg", "expected a non-zero heading change (+ port, − starboard)")
         radius, side = _turn_radius(spec, speed0, where), (1 if spec.heading_change_rad > 0 else -1)
+        roll = _roll_length(speed0, radius, roll_rate, radius * abs(spec.heading_change_rad), where)
+        arc = radius * abs(spec.heading_change_rad) + roll
     leg = Leg(index, spec.kind, entry.time_s, 1.0 if duration is None else duration, entry.position_m, speed0,
-              0.0 if a is None else a, gamma0, gamma1, rate, t_gamma, entry.heading_rad, radius, side, entry.fraction, fraction1)
+              0.0 if a is None else a, gamma0, gamma1, rate, t_gamma, entry.heading_rad, radius, side, entry.fraction, fraction1,
+              arc, roll)
     if duration is None:
-        leg = _turn_duration(leg, spec, radius * abs(spec.heading_change_rad), where)
+        leg = _turn_duration(leg, spec, arc, where)
     return leg
+
+
+def _roll_length(speed0: float, radius: float, roll_rate: float, circle_m: float, where: str) -> float:
+    """Horizontal arc L_r = V₀ φ₀ / p (m) of a turn's roll-in (and roll-out) at the bank rate p (rad/s) to the
+    coordinated bank φ₀ = atan(V₀²/(g R)) at the turn's start speed; 0 when p is infinite."""
+    if math.isinf(roll_rate):
+        return 0.0
+    bank = math.atan(speed0 * speed0 / (G0_M_S2 * radius))
+    roll = speed0 * bank / roll_rate
+    if roll > circle_m:
+        raise PathError(f"{where}.turn.heading_change_deg", (
+            f"rolling in and out at roll_rate_deg_s {math.degrees(roll_rate):.3g}°/s to the bank {math.degrees(bank):.3g}° "
+            f"takes {roll:.4g} m of arc each, more than the turn's R |Δψ| = {circle_m:.4g} m: expected a larger heading change "
+            "or radius, or a faster roll rate"))
+    return roll
 
 
 def _with(leg: Leg, duration: float, spec: LegSpec) -> Leg:
@@ -325,15 +388,15 @@ def _turn_duration(leg: Leg, spec: LegSpec, arc_m: float, where: str) -> Leg:
     return _with(leg, brentq(shortfall, 0.0, top, xtol=1e-12, rtol=1e-14), spec)
 
 
-def _solve_leg(index: int, spec: LegSpec, entry: _Entry, change_g: float) -> Leg:
+def _solve_leg(index: int, spec: LegSpec, entry: _Entry, change_g: float, roll_rate: float) -> Leg:
     """The leg, its final flight-path angle given, kept or solved from the height change (Brent's method)."""
     where = f"legs[{index}]"
     if spec.height_change_m is None:
         gamma1 = entry.flight_path_rad if spec.flight_path_rad is None else spec.flight_path_rad
-        return _build(index, spec, entry, gamma1, change_g, where)
+        return _build(index, spec, entry, gamma1, change_g, roll_rate, where)
 
     def excess(gamma1):
-        leg = _build(index, spec, entry, gamma1, change_g, where)
+        leg = _build(index, spec, entry, gamma1, change_g, roll_rate, where)
         return float(_arc(leg, np.array([leg.duration_s]))[0].imag) - spec.height_change_m
 
     low, high = -_GAMMA_BRACKET_RAD, _GAMMA_BRACKET_RAD
@@ -342,7 +405,7 @@ def _solve_leg(index: int, spec: LegSpec, entry: _Entry, change_g: float) -> Leg
             f"a height change of {spec.height_change_m} m cannot be flown in this leg with flight-path angles within "
             f"±{math.degrees(_GAMMA_BRACKET_RAD):g}° reached at the rate g flight_path_change_g / V = {change_g} g / "
             f"{entry.speed_mps:.4g} m/s: expected a longer leg, a smaller height change or a larger flight_path_change_g"))
-    return _build(index, spec, entry, brentq(excess, low, high, xtol=1e-13, rtol=1e-15), change_g, where)
+    return _build(index, spec, entry, brentq(excess, low, high, xtol=1e-13, rtol=1e-15), change_g, roll_rate, where)
 
 
 def solve_path(spec: PathSpec) -> tuple[Leg, ...]:
@@ -351,7 +414,7 @@ def solve_path(spec: PathSpec) -> tuple[Leg, ...]:
                    spec.start_rotor_speed_fraction)
     legs = []
     for index, leg_spec in enumerate(spec.legs):
-        leg = _solve_leg(index, leg_spec, entry, spec.flight_path_change_g)
+        leg = _solve_leg(index, leg_spec, entry, spec.flight_path_change_g, spec.roll_rate_rad_s)
         if leg.gamma_time_s > leg.duration_s:
             raise PathError(f"legs[{index}]", (
                 f"the flight-path change from {math.degrees(leg.gamma0_rad):.3g}° to {math.degrees(leg.gamma1_rad):.3g}° "

@@ -1,6 +1,7 @@
 """Flight paths (nps.mission.paths): kinematics against closed forms and finite differences, continuity at the
 joins, coordinated-turn bank and load factor, the limits' messages, and the bundled paths."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -34,11 +35,16 @@ def test_joins_are_continuous_in_position_velocity_heading_and_rotor_speed():
             assert np.max(np.abs(end[key] - start[key])) <= tol, (after.index, key)
 
 
+ROLLING = dataclasses.replace(MIXED, roll_rate_rad_s=math.radians(5.0))  # turns rolled in and out at 5°/s
+
+
+@pytest.mark.parametrize("spec", [MIXED, ROLLING], ids=["instant_roll", "rolling"])
 @pytest.mark.parametrize("index", range(5))
-def test_velocity_and_acceleration_are_the_derivatives_of_the_position(index):
-    """Central differences (h = 1e-4 s) of position and velocity against the closed forms, away from the kinks
-    (the end of a flight-path change): 1e-6 m/s and 1e-5 m/s²."""
-    leg = solve_path(MIXED)[index]
+def test_velocity_and_acceleration_are_the_derivatives_of_the_position(spec, index):
+    """Central differences (h = 1e-4 s) of position and velocity against the closed forms (circle arcs, and the
+    Fresnel-integral clothoids of a rolled-in turn), away from the kinks (the end of a flight-path change): 1e-6 m/s
+    and 1e-5 m/s²."""
+    leg = solve_path(spec)[index]
     tau = np.linspace(0.0, leg.duration_s, 301)[1:-1]
     tau = tau[np.abs(tau - leg.gamma_time_s) > 1e-3]
     h = 1e-4
@@ -54,6 +60,41 @@ def test_turn_ends_on_its_heading_and_circle():
     assert legs[0].duration_s == pytest.approx(math.pi * 400.0 / 2 / 30.0, rel=1e-12)
     np.testing.assert_allclose(end["position_m"][0], [400.0, 400.0, 300.0], atol=1e-9)
     assert end["heading_rad"][0] == pytest.approx(math.pi / 2, abs=1e-12)
+
+
+def test_rolled_in_turn_banks_continuously_and_keeps_its_heading_change():
+    """A level 90° port turn on R = 400 m at 30 m/s rolled in and out at p = 5°/s: the curvature ramps over
+    L_r = V φ₀ / p at each end (φ₀ = atan(V²/(gR))), so the bank goes from 0 to −φ₀ in φ₀/p seconds (never faster than
+    p tan φ₀/φ₀, the slope of atan at 0), holds −φ₀ and returns to 0; the turn ends on heading +y, its end point
+    the quadrature of its velocity within 1e-6 m; joins continuous in bank."""
+    rate = math.radians(5.0)
+    spec = dataclasses.replace(_spec(LegSpec("straight", distance_m=100.0),
+                                     LegSpec("turn", heading_change_rad=math.pi / 2, radius_m=400.0),
+                                     LegSpec("straight", distance_m=100.0)), roll_rate_rad_s=rate)
+    legs, history = flight_path_history(spec, 0.01)
+    turn = legs[1]
+    phi0 = math.atan(30.0**2 / (G0_M_S2 * 400.0))
+    assert turn.roll_length_m == pytest.approx(30.0 * phi0 / rate, rel=1e-14)
+    assert turn.duration_s == pytest.approx((400.0 * math.pi / 2 + turn.roll_length_m) / 30.0, rel=1e-12)
+    tau = np.linspace(0.0, turn.duration_s, 400001)
+    velocity = leg_kinematics(turn, tau)["velocity_mps"]
+    quadrature = np.asarray(turn.position0_m) + np.sum(0.5 * (velocity[1:] + velocity[:-1]) * np.diff(tau)[:, None], axis=0)
+    end = leg_kinematics(turn, [turn.duration_s])
+    np.testing.assert_allclose(end["position_m"][0], quadrature, atol=1e-6)
+    assert end["heading_rad"][0] == pytest.approx(math.pi / 2, abs=1e-12)
+    bank = history.bank_rad
+    assert np.max(np.abs(np.diff(bank))) <= rate * 0.01 * math.tan(phi0) / phi0 * (1 + 1e-9)
+    in_turn = (history.time_s > turn.t0_s + phi0 / rate + 0.01) & (history.time_s < turn.t0_s + turn.duration_s - phi0 / rate - 0.01)
+    np.testing.assert_allclose(bank[in_turn], -phi0, atol=1e-9)
+    assert abs(bank[history.leg == 0]).max() < 1e-12 and abs(bank[history.leg == 2]).max() < 1e-12
+
+
+def test_turn_too_short_to_roll_in_and_out_is_refused():
+    spec = dataclasses.replace(_spec(LegSpec("turn", heading_change_rad=math.radians(5.0), radius_m=400.0)),
+                               roll_rate_rad_s=math.radians(5.0))
+    with pytest.raises(PathError) as error:
+        solve_path(spec)
+    assert error.value.field == "legs[0].turn.heading_change_deg" and "expected a larger heading change" in error.value.expected
 
 
 def test_coordinated_turn_bank_and_load_factor():
