@@ -66,7 +66,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from nps.core.atmosphere import AtmosphereState, absorption_db_per_m
-from nps.core.jit import kernel, prange
+from nps.core.jit import kernel, kernel_array, prange
 from nps.noise.metrics import a_weighting_db
 from nps.noise.spectra import LEVEL_FLOOR_DB, third_octave_bands
 
@@ -548,11 +548,11 @@ def _segment_states(trajectory: Trajectory) -> tuple[np.ndarray, ...]:
     if trajectory.hemisphere_weight is None:
         nxt, weight = np.zeros(n, dtype=np.int64), np.zeros(n)
     else:
-        nxt = np.ascontiguousarray(trajectory.next_hemisphere_index, dtype=np.int64)
-        weight = np.ascontiguousarray(trajectory.hemisphere_weight, dtype=float)
+        nxt = kernel_array(trajectory.next_hemisphere_index, dtype=np.int64)
+        weight = kernel_array(trajectory.hemisphere_weight)
     if trajectory.hemisphere_frames is None:
         return nxt, weight, np.zeros((n, 3, 3)), np.zeros(n, dtype=np.bool_)
-    frames = np.ascontiguousarray(trajectory.hemisphere_frames, dtype=float)
+    frames = kernel_array(trajectory.hemisphere_frames)
     return nxt, weight, frames, np.any(frames != np.eye(3), axis=(1, 2))
 
 
@@ -567,11 +567,11 @@ def propagate(hemispheres, trajectory: Trajectory, receivers, time_s, speed_of_s
     reflects as a horizontal plane (default 0: flat ground z = 0).
     """
     bands, rec = _check_inputs(hemispheres, trajectory, receivers, speed_of_sound_mps)
-    ground_z = np.zeros(rec.shape[0]) if ground_elevation_m is None else np.ascontiguousarray(ground_elevation_m, dtype=float)
+    ground_z = np.zeros(rec.shape[0]) if ground_elevation_m is None else kernel_array(ground_elevation_m)
     if ground_z.shape != (rec.shape[0],) or not np.all(np.isfinite(ground_z)) or np.any(ground_z < 0.0) \
             or np.any(ground_z > rec[:, 2]):
         raise PropagationError("ground_elevation_m: expected one finite elevation >= 0 per receiver, at most its z")
-    times = np.ascontiguousarray(time_s, dtype=float)
+    times = kernel_array(time_s)
     if times.ndim != 1 or times.size < 1 or not np.all(np.isfinite(times)):
         raise PropagationError("time_s must be a finite 1-D array")
     c = float(speed_of_sound_mps)
@@ -587,17 +587,17 @@ def propagate(hemispheres, trajectory: Trajectory, receivers, time_s, speed_of_s
         beta = 1.0 / normalised_impedance(ground.model, centres, ground.flow_resistivity_kPa_s_m2)
     else:
         beta = np.ones(bands.size, dtype=np.complex128)
-    h_levels = np.ascontiguousarray(np.stack([h.levels_db for h in hemispheres]), dtype=float)
+    h_levels = kernel_array(np.stack([h.levels_db for h in hemispheres]))
     h_mach = np.array([np.asarray(h.velocity_mps, float) / h.speed_of_sound_mps for h in hemispheres])
     n_r, n_t = rec.shape[0], times.size
     la = np.empty((n_r, n_t))
     seg = np.empty((n_r, n_t), dtype=np.int64)
     out = np.empty((n_r, n_t, bands.size) if store_bands else (1, 1, 1))
-    _propagate_kernel(np.ascontiguousarray(rec), ground_z, times, c, np.ascontiguousarray(trajectory.time_s, dtype=float),
-                      np.ascontiguousarray(trajectory.position_m, dtype=float), np.ascontiguousarray(trajectory.velocity_mps),
-                      np.ascontiguousarray(trajectory.hemisphere_index, dtype=np.int64), *_segment_states(trajectory), h_levels,
-                      np.ascontiguousarray(hemispheres[0].elevation_deg, dtype=float),
+    _propagate_kernel(kernel_array(rec), ground_z, times, c, kernel_array(trajectory.time_s),
+                      kernel_array(trajectory.position_m), kernel_array(trajectory.velocity_mps),
+                      kernel_array(trajectory.hemisphere_index, dtype=np.int64), *_segment_states(trajectory), h_levels,
+                      kernel_array(hemispheres[0].elevation_deg),
                       360.0 / hemispheres[0].azimuth_deg.size, np.array([h.radius_m for h in hemispheres], float),
                       h_mach, alpha, a_weight, k_edge, ground_kind, bool(ground.coherent),
-                      np.ascontiguousarray(beta, dtype=np.complex128), bool(store_bands), la, seg, out)
+                      kernel_array(beta, dtype=np.complex128), bool(store_bands), la, seg, out)
     return ReceiverHistories(times, la, seg, bands.astype(np.int64), out if store_bands else None)

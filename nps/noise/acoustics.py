@@ -63,7 +63,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from nps.core.jit import kernel, prange
+from nps.core.jit import kernel, kernel_array, prange
 
 C0_MPS = 340.294
 RHO0_KG_M3 = 1.225
@@ -673,20 +673,19 @@ def _pack_sources(sources: CompactSources, c0: float, period: float):
         surface = np.any(sources.mass_flux_kg_s != 0.0, axis=1) | np.any(sources.mass_flux_rate_kg_s2 != 0.0, axis=1)
     return (
         src,
-        np.ascontiguousarray(tau, dtype=float),
-        np.ascontiguousarray(sources.volume_m3, dtype=float),
+        kernel_array(tau),
+        kernel_array(sources.volume_m3),
         surface,
-        np.ascontiguousarray(sources.dipole_group, dtype=np.int64),
-        np.ascontiguousarray(sources.monopole_group, dtype=np.int64),
+        kernel_array(sources.dipole_group, dtype=np.int64),
+        kernel_array(sources.monopole_group, dtype=np.int64),
         len(sources.groups),
     )
 
 
 def covered_interval(sources: CompactSources, observers: Observers, c0_mps: float = C0_MPS) -> np.ndarray:
     """(n_obs, 2): observer-time interval (s) that every source node covers at each observer."""
-    pos = np.ascontiguousarray(sources.position_m, dtype=float)
-    return _coverage(pos, np.asarray(sources.time_s, float), observers.position_m.astype(float),
-                     observers.velocity_mps.astype(float), float(c0_mps))
+    return _coverage(kernel_array(sources.position_m), kernel_array(sources.time_s), kernel_array(observers.position_m),
+                     kernel_array(observers.velocity_mps), float(c0_mps))
 
 
 def radiate_arrays(sources: CompactSources, observers: Observers, grid: TimeGrid, *,
@@ -701,9 +700,9 @@ def radiate_arrays(sources: CompactSources, observers: Observers, grid: TimeGrid
     if grid.n_samples < 1 or not grid.duration_s > 0:
         raise AcousticsError(f"time grid: need n_samples >= 1 and duration > 0, got {grid}")
     _check_speeds(sources, observers, c0_mps)
-    xo = np.ascontiguousarray(observers.position_m, dtype=float)
-    vo = np.ascontiguousarray(observers.velocity_mps, dtype=float)
-    tau = np.ascontiguousarray(sources.time_s, dtype=float)
+    xo = kernel_array(observers.position_m)
+    vo = kernel_array(observers.velocity_mps)
+    tau = np.asarray(sources.time_s, dtype=float)
     if sources.period_s is None:
         dtau = np.diff(tau)
         if not np.allclose(dtau, dtau[0], rtol=1e-9, atol=0.0) or dtau[0] <= 0:

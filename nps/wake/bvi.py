@@ -59,7 +59,7 @@ import numpy as np
 import pandas as pd
 
 from nps.core import periods
-from nps.core.jit import kernel, prange
+from nps.core.jit import kernel, kernel_array, prange
 from nps.wake import prescribed as wake
 from nps.wake import vortex
 from nps.rotor.geometry import RotorGeometry
@@ -304,7 +304,7 @@ def gust_transfer(k, beta_sq=None) -> np.ndarray:
     if np.any(k < 0.0):
         raise ValueError("gust_transfer: reduced frequency must be >= 0")
     log_inv = np.zeros_like(k) if beta_sq is None else np.broadcast_to(-np.log(np.asarray(beta_sq, dtype=float)), k.shape)
-    flat = _transfer_array(np.ascontiguousarray(k.ravel()), np.ascontiguousarray(log_inv, dtype=float).ravel(), _sears_table())
+    flat = _transfer_array(kernel_array(k.ravel()), kernel_array(log_inv).ravel(), _sears_table())
     return flat.reshape(k.shape)
 
 

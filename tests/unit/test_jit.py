@@ -3,6 +3,7 @@ numba checks a cached kernel against its own file only, so a kernel cached befor
 inlines from another file would load with the old arithmetic. numba itself is imported on the first call of a
 kernel, not with the modules that declare kernels."""
 
+import dataclasses
 import os
 import subprocess
 import sys
@@ -74,3 +75,39 @@ def test_a_lazy_kernel_computes_what_numba_njit_computes():
     expected = numba.njit(error_model="numpy")(ratio.__wrapped__ if hasattr(ratio, "__wrapped__") else ratio)(a, b)
     assert np.array_equal(got, expected) and np.isinf(got[2])
     assert lazy.signatures and lazy.py_func is ratio and lazy.__name__ == "ratio"
+
+
+def test_kernel_array_is_a_writeable_c_contiguous_copy_only_where_needed():
+    """A read-only or Fortran-ordered array comes back as a writeable C-contiguous copy with the same values;
+    an array that already is one comes back as itself."""
+    good = np.arange(6.0).reshape(2, 3)
+    assert jit.kernel_array(good) is good
+    readonly = good.copy()
+    readonly.flags.writeable = False
+    fortran = np.asfortranarray(good)
+    for odd in (readonly, fortran, np.broadcast_to(good[0], (2, 3)), [0, 1, 2]):
+        array = jit.kernel_array(odd)
+        assert array.flags.c_contiguous and array.flags.writeable
+        np.testing.assert_array_equal(array, np.asarray(odd, dtype=float))
+    assert jit.kernel_array(good, dtype=np.int64).dtype == np.int64
+
+
+def test_read_only_and_fortran_inputs_compile_no_second_signature():
+    """Pandas columns are read-only and transposed arrays Fortran-ordered: each would be a numba type of its own and
+    a whole recompilation of the kernel (issue 36). The callers pass every array through kernel_array, so a
+    kernel keeps the one signature of its C-contiguous writeable inputs."""
+    from nps.noise.acoustics import Observers, _coverage, covered_interval
+    from nps.wake.bvi import _transfer_array, gust_transfer
+    from tests.unit.test_acoustics_reference import _observers, _sources
+
+    sources = _sources(16, None)
+    position, velocity = _observers()
+    covered_interval(sources, Observers(position, velocity))
+    gust_transfer(np.linspace(0.0, 5.0, 8), np.full(8, 0.5))
+    coverage, transfer = len(_coverage.signatures), len(_transfer_array.signatures)
+    frozen = np.array(sources.time_s)
+    frozen.flags.writeable = False
+    odd = Observers(np.asfortranarray(position), np.asfortranarray(velocity))
+    covered_interval(dataclasses.replace(sources, time_s=frozen), odd)
+    gust_transfer(np.asfortranarray(np.linspace(0.0, 5.0, 8).reshape(2, 4)), 0.5)
+    assert (len(_coverage.signatures), len(_transfer_array.signatures)) == (coverage, transfer)

@@ -42,7 +42,7 @@ import pandas as pd
 
 from nps.noise.broadband import bpm
 from nps.core.atmosphere import AtmosphereState
-from nps.core.jit import kernel, prange
+from nps.core.jit import kernel, kernel_array, prange
 from nps.rotor.geometry import OperatingPoint, RotorGeometry
 from nps.noise.spectra import third_octave_bands
 
@@ -253,7 +253,7 @@ def _rotation_average(msp, use_low, kin: SourceKinematics, mach, active, observe
     msp = np.broadcast_to(msp, np.shape(use_low) + np.shape(msp)[-1:])
     energy = np.any(msp > 0.0, axis=-1)
     spectra = (np.log(np.maximum(msp, 1e-300), out=np.zeros(msp.shape), where=energy[..., None]) if doppler
-               else np.ascontiguousarray(msp))
+               else kernel_array(msp))
     log_bands = np.log10(band_center_hz)
     out = np.empty((msp.shape[0], len(observers), log_bands.size))
     for start in range(0, len(observers), OBSERVER_CHUNK):
@@ -263,9 +263,9 @@ def _rotation_average(msp, use_low, kin: SourceKinematics, mach, active, observe
         r2 = radiation.distance_m**2
         weight = 1.0 / d
         total = np.zeros((msp.shape[0], d.shape[0], log_bands.size))
-        _average_kernel(spectra, energy, np.ascontiguousarray(use_low), radiation.high / r2, radiation.low / r2,
+        _average_kernel(spectra, energy, kernel_array(use_low, dtype=bool), radiation.high / r2, radiation.low / r2,
                         weight / np.sum(weight, axis=1, keepdims=True), np.log10(d),
-                        np.ascontiguousarray(active, dtype=bool), log_bands, log_f0, doppler, total)
+                        kernel_array(active, dtype=bool), kernel_array(log_bands), log_f0, doppler, total)
         out[:, chunk] = total
     return out
 
