@@ -22,15 +22,14 @@ import numpy as np
 
 from nps.wake import bvi
 from nps.wake import free as freewake
-from nps.wake import prescribed as wake
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-import tail_rotor_own_wake as rig_case  # noqa: E402  (the rig's set-up and c_n extraction)
+TESTS = HERE.parents[1] / "tests"
+sys.path[:0] = [str(HERE), str(TESTS / "validation"), str(TESTS)]
+import hart_ii_case  # noqa: E402  (the HART-II PIV data and their comparison with a wake)
+import tail_rotor_own_wake as rig_case  # noqa: E402  (the rig's set-up, coupled loads and c_n extraction)
 
 STATION = rig_case.STATION
-PIV_FILES = ("dnw_adv_bl53.tec", "dnw_ret_bl53.tec")
-PIV_DIR = HERE.parents[1] / "tests" / "data" / "hart_ii"
 
 
 @contextlib.contextmanager
@@ -92,19 +91,6 @@ VARIANTS = (
 )
 
 
-def _coupled(inputs, wake_changes, free_changes, revolutions):
-    rig, rotors, trim, disks, summaries = inputs
-    settings = rig["settings"]
-    block = {**settings["wake"], **wake_changes}
-    turns = revolutions or settings["resolution"]["wake_revolutions"]
-    model = wake.WakeModel.from_config(block, turns, settings["resolution"]["n_psi"])
-    free = freewake.FreeWakeModel.from_config({**block["free"], **free_changes})
-    from nps.wake import interaction
-
-    return interaction.aircraft_bvi_loads(trim, rotors, disks, summaries, model, free,
-                                          controls={n: r["control"] for n, r in rotors.items()})
-
-
 def _main_dup(result, disks):
     """The main rotor's ΔU_P (m/s, blade frame, + up through the disk) at the tail's 0.97 R over the period."""
     solution = result.solution
@@ -147,36 +133,33 @@ def tail_plane_crossings(solution, psi_deg=range(0, 90, 3)):
 
 def piv_heights(solution, x_min_m=0.8):
     """HART-II BL PIV vortices at x ≥ ``x_min_m`` (behind the hub, toward the tail rotor): (x, measured z,
-    predicted − measured z) with the nearest predicted crossing of the measured vortex's cut plane, m, H'."""
-    out = []
-    for name in PIV_FILES:
-        rows = [line.split() for line in (PIV_DIR / name).read_text().splitlines()]
-        data = np.array([[float(v) for v in r[2:6]] for r in rows if len(r) == 6 and r[0][0].isdigit()])
-        for psi_deg in np.unique(data[:, 0]):
-            nodes = freewake.wake_snapshot(solution, "main", math.radians(psi_deg)).nodes_m
-            for _, x, y, z in data[(data[:, 0] == psi_deg) & (data[:, 1] >= x_min_m)]:
-                cross = wake.filament_plane_crossings(nodes, 1, y)
-                k = int(np.argmin(np.hypot(cross[:, 0] - x, cross[:, 2] - z)))
-                out.append((x, z, cross[k, 2] - z))
-    return np.array(out)
+    predicted − measured z) with the nearest predicted crossing of the measured vortex's cut plane, m, H'
+    (``hart_ii_case.piv_miss_distances_free``; the main rotor is the rig's first)."""
+    return np.array([(x, z, z_pred - z) for _, _, _, x, z, _, z_pred, _ in
+                     hart_ii_case.piv_miss_distances_free(solution, "BL") if x >= x_min_m])
+
+
+def run_variant(inputs, variant):
+    """One of :data:`VARIANTS` on the rig's set-up ``inputs`` (``rig_case._inputs``): (coupled result, ψ of the
+    tail over the period (rad), its c_n at :data:`STATION`, the main rotor's ΔU_P there, :func:`turn_statistics`)."""
+    rig, _, trim, disks, _ = inputs
+    _, wake_changes, free_changes, revolutions, change = variant
+    with _tail_sees(change) if change else contextlib.nullcontext():
+        result = rig_case._coupled(*inputs, wake_changes, free_changes, revolutions)
+        dup = _main_dup(result, disks)
+    psi, cn = rig_case._cn(result.results["tail"].disk, trim)
+    return result, psi, cn, dup, turn_statistics(cn, dup, rig["settings"]["resolution"]["n_psi"])
 
 
 def main(path=HERE / "main_wake_at_tail_rotor.png"):
     with tempfile.TemporaryDirectory() as scratch:
         inputs = rig_case._inputs(Path(scratch))
-    rig, rotors, trim, disks, summaries = inputs
-    n_psi = rig["settings"]["resolution"]["n_psi"]
-    runs = {}
-    for label, wake_changes, free_changes, revolutions, change in VARIANTS:
-        with _tail_sees(change) if change else contextlib.nullcontext():
-            result = _coupled(inputs, wake_changes, free_changes, revolutions)
-            dup = _main_dup(result, disks)
-        psi, cn = rig_case._cn(result.results["tail"].disk, trim)
-        s = turn_statistics(cn, dup, n_psi)
-        runs[label] = (result, psi, cn, dup)
+    n_psi = inputs[0]["settings"]["resolution"]["n_psi"]
+    runs = {variant[0]: run_variant(inputs, variant) for variant in VARIANTS}
+    for label, (*_, s) in runs.items():
         print(f"{label:42s} c_n swing {s['swing']:.3f}, turn-to-turn range {s['cn_range']:.3f}, RMS "
               f"{s['cn_rms']:.4f}; main's dU_P max {s['dup_max']:.2f} m/s, turn-to-turn range {s['dup_range']:.2f} m/s")
-    result, psi, cn, dup = runs["rig as bundled"]
+    result, psi, cn, dup, _ = runs["rig as bundled"]
     crossings, _, radius = tail_plane_crossings(result.solution)
     young = crossings[:, 0] < 360.0
     print(f"main-rotor vortex crossings of the tail plane within {2 * radius:.2f} m of its hub: ages "

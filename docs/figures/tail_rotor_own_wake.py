@@ -58,10 +58,13 @@ def _cn(disk, trim, rotor="tail"):
     return table["psi_rad"].to_numpy(), table["cn"].to_numpy()
 
 
-def _coupled(rig, rotors, trim, disks, summaries, wake_changes, free_changes):
+def _coupled(rig, rotors, trim, disks, summaries, wake_changes, free_changes, wake_revolutions=None):
+    """The rig's coupled free-wake loads with its wake and free blocks changed (``wake_revolutions``: the wake age
+    kept, default the rig's)."""
     settings = rig["settings"]
     block = {**settings["wake"], **wake_changes}
-    model = wake.WakeModel.from_config(block, settings["resolution"]["wake_revolutions"], settings["resolution"]["n_psi"])
+    model = wake.WakeModel.from_config(block, wake_revolutions or settings["resolution"]["wake_revolutions"],
+                                       settings["resolution"]["n_psi"])
     free = freewake.FreeWakeModel.from_config({**block["free"], **free_changes})
     return interaction.aircraft_bvi_loads(trim, rotors, disks, summaries, model, free,
                                           controls={n: r["control"] for n, r in rotors.items()})

@@ -9,7 +9,6 @@ Measured at the time of writing: main-rotor ΔU_P at 0.97 R up to 2.35 m/s, 1.53
 main rotor's); the vortices trailed behind the main hub cross the tail's disk plane 0.21–0.51 m below its hub.
 """
 
-import contextlib
 import sys
 import tempfile
 from pathlib import Path
@@ -23,21 +22,19 @@ import main_wake_at_tail_rotor as case  # noqa: E402
 import tail_rotor_own_wake as rig_case  # noqa: E402
 
 
+KEPT = ("rig as bundled", "no far-field grouping", "tail loads without the main's vortices")
+
+
 @pytest.fixture(scope="module")
 def runs():
+    """The three variants the tests read: label → (coupled result, main rotor's ΔU_P at 0.97 R, statistics)."""
     with tempfile.TemporaryDirectory() as scratch:
         inputs = rig_case._inputs(Path(scratch))
-    rig, rotors, trim, disks, summaries = inputs
-    n_psi = rig["settings"]["resolution"]["n_psi"]
     out = {}
-    for label, wake_changes, free_changes, revolutions, change in case.VARIANTS:
-        if label not in ("rig as bundled", "no far-field grouping", "tail loads without the main's vortices"):
-            continue
-        with case._tail_sees(change) if change else contextlib.nullcontext():
-            result = case._coupled(inputs, wake_changes, free_changes, revolutions)
-            dup = case._main_dup(result, disks)
-        _, cn = rig_case._cn(result.results["tail"].disk, trim)
-        out[label] = (result, dup, case.turn_statistics(cn, dup, n_psi))
+    for variant in case.VARIANTS:
+        if variant[0] in KEPT:
+            result, _, _, dup, stats = case.run_variant(inputs, variant)
+            out[variant[0]] = (result, dup, stats)
     return out
 
 
