@@ -48,6 +48,31 @@ rule all:
     default_target: True
 
 
+# A local run forks its jobs from one server process that imported NPS once (nps.stages.jobserver; environment
+# NPS_JOB_SERVER=off: every job in its own process). Dry runs and cluster runs (an executor plugin) start none.
+JOB_SERVER = None
+
+
+onstart:
+    from nps.stages import jobserver
+
+    global JOB_SERVER
+    if workflow.local_exec:
+        JOB_SERVER = jobserver.start(os.getpid(), os.path.join(".snakemake", "nps-jobserver.log"))
+
+
+onsuccess:
+    from nps.stages import jobserver
+
+    jobserver.stop(JOB_SERVER)
+
+
+onerror:
+    from nps.stages import jobserver
+
+    jobserver.stop(JOB_SERVER)
+
+
 include: "workflow/rules/trim.smk"
 include: "workflow/rules/loads.smk"
 include: "workflow/rules/wake.smk"

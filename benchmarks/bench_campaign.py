@@ -9,8 +9,11 @@ certification, tone tables), i.e. the campaign whose time issue 16 measured. ``-
 the two snakemake runs with their children next to the wall time (the machine is shared).
 
 ``--wake-threads N`` runs the wake jobs with N threads (the local profile gives them one).
+``--without-job-server`` runs every job in its own process (``NPS_JOB_SERVER=off``), as before the job server
+(nps.stages.jobserver), for a side-by-side comparison.
 
-    python benchmarks/bench_campaign.py [--cold] [--study-only] [--free-wake] [--wake-threads N] [--keep DIR]
+    python benchmarks/bench_campaign.py [--cold] [--study-only] [--free-wake] [--wake-threads N]
+                                        [--without-job-server] [--keep DIR]
 """
 
 from __future__ import annotations
@@ -30,9 +33,12 @@ REPO = Path(__file__).resolve().parents[1]
 from campaign_times import stage_table
 
 
-def snakemake(workdir: Path, cache: Path, *args: str) -> tuple[float, float]:
-    """Run the repository's workflow in ``workdir``; (wall s, CPU s of snakemake and its jobs)."""
+def snakemake(workdir: Path, cache: Path, *args: str, job_server: bool = True) -> tuple[float, float]:
+    """Run the repository's workflow in ``workdir``; (wall s, CPU s of snakemake and its jobs, the job server's
+    included)."""
     env = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
+    if not job_server:
+        env["NPS_JOB_SERVER"] = "off"
     cpu0, started = os.times(), time.perf_counter()
     subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(workdir), *args],
                    check=True, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -51,6 +57,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--study-only", action="store_true", help="without footprint, certification and tone tables")
     ap.add_argument("--free-wake", action="store_true", help="wake.model: free (rotor-rotor interaction)")
     ap.add_argument("--wake-threads", type=int, help="threads of each wake job (default: the profile's)")
+    ap.add_argument("--without-job-server", action="store_true", help="every job in its own process")
     ap.add_argument("--keep", type=Path, help="run in this directory and keep it")
     args = ap.parse_args(argv)
     workdir = args.keep or Path(tempfile.mkdtemp(prefix="nps-campaign-"))
@@ -68,11 +75,13 @@ def main(argv: list[str] | None = None) -> int:
     config_path.write_text(yaml.safe_dump(config, sort_keys=False))
     cache = Path(tempfile.mkdtemp(prefix="nps-numba-")) if args.cold else REPO / ".numba_cache"
     extra = ["--set-threads", f"wake={args.wake_threads}"] if args.wake_threads else []
-    (full, cpu), (noop, _) = snakemake(workdir, cache, "-j2", "all", *extra), snakemake(workdir, cache, "-j2", "all", *extra)
+    server = not args.without_job_server
+    (full, cpu), (noop, _) = (snakemake(workdir, cache, "-j2", "all", *extra, job_server=server),
+                              snakemake(workdir, cache, "-j2", "all", *extra, job_server=server))
     table = stage_table(workdir / "results")
     print(table.round(2).to_string())
     print(f"\n{int(table['jobs'].sum())} jobs ({'free' if args.free_wake else config['wake'].get('model', 'beddoes')} "
-          f"wake); campaign {_min_s(full)} wall, {_min_s(cpu)} CPU "
+          f"wake, {'job server' if server else 'a process per job'}); campaign {_min_s(full)} wall, {_min_s(cpu)} CPU "
           f"({'cold' if args.cold else 'warm'} numba cache, load average {os.getloadavg()[0]:.1f} at the end); "
           f"no-op rerun {noop:.1f} s")
     if args.keep is None:

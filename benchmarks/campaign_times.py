@@ -13,24 +13,31 @@ the summed job time divided by the number of parallel jobs (``-j``) plus Snakema
 
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 
 import pandas as pd
 
 
+TIMING = re.compile(r"timing: start-up (?P<start_up_s>[\d.]+) s, work (?P<work_s>[\d.]+) s"
+                    r"(?:, numba import (?P<numba_s>[\d.]+) s)?(?:, cpu (?P<cpu_s>[\d.]+) s, max rss (?P<rss_mb>\d+) MB)?")
+
+
 def log_timings(log_dir: Path) -> pd.DataFrame:
-    """Per job (rule, start_up_s, work_s, numba_s) from the ``timing:`` line of its log (numba_s: 0 for a job that
-    imported no numba, or a log written before the numba import was reported)."""
+    """Per job (rule, start_up_s, work_s, numba_s, log_cpu_s, log_rss_mb) from the ``timing:`` line of its log
+    (numba_s: 0 for a job that imported no numba; log_cpu_s, log_rss_mb: NaN in a log written before they were
+    reported)."""
     rows = []
     for path in sorted(log_dir.rglob("*.log")):
         lines = path.read_text().splitlines()
-        if lines and lines[-1].startswith("timing: start-up "):
-            words = lines[-1].split()
-            numba_s = float(words[9]) if len(words) > 9 and words[7:9] == ["numba", "import"] else 0.0
-            rows.append({"rule": path.relative_to(log_dir).parts[0], "start_up_s": float(words[2]), "work_s": float(words[5]),
-                         "numba_s": numba_s})
-    return pd.DataFrame(rows, columns=["rule", "start_up_s", "work_s", "numba_s"])
+        match = TIMING.match(lines[-1]) if lines else None
+        if match:
+            values = match.groupdict()
+            rows.append({"rule": path.relative_to(log_dir).parts[0], "start_up_s": float(values["start_up_s"]),
+                         "work_s": float(values["work_s"]), "numba_s": float(values["numba_s"] or 0.0),
+                         "log_cpu_s": float(values["cpu_s"] or "nan"), "log_rss_mb": float(values["rss_mb"] or "nan")})
+    return pd.DataFrame(rows, columns=["rule", "start_up_s", "work_s", "numba_s", "log_cpu_s", "log_rss_mb"])
 
 
 def stage_table(results: Path) -> pd.DataFrame:
@@ -45,8 +52,9 @@ def stage_table(results: Path) -> pd.DataFrame:
     jobs = pd.DataFrame(rows)
     table = jobs.groupby("rule").agg(jobs=("s", "size"), total_s=("s", "sum"), mean_s=("s", "mean"),
                                      max_s=("s", "max"), cpu_s=("cpu_s", "sum"), max_rss_mb=("max_rss_mb", "max"))
-    timings = log_timings(results / "logs").groupby("rule").agg(start_up_s=("start_up_s", "mean"), work_s=("work_s", "mean"),
-                                                                 numba_s=("numba_s", "mean"))
+    timings = log_timings(results / "logs").groupby("rule").agg(
+        start_up_s=("start_up_s", "mean"), work_s=("work_s", "mean"), numba_s=("numba_s", "mean"),
+        log_cpu_s=("log_cpu_s", "sum"), log_rss_mb=("log_rss_mb", "max"))
     return table.join(timings).sort_values("total_s", ascending=False)
 
 

@@ -134,6 +134,16 @@ def numba_module():
     return _numba
 
 
+def prepare_numba() -> None:
+    """Import numba (:func:`numba_module`) and prepare its code generator as before the first cached kernel is
+    loaded, without running a kernel (no thread pool started): what a process that forks jobs does once
+    (nps.stages.jobserver)."""
+    numba_module()
+    from numba.core.registry import cpu_target
+
+    cpu_target.target_context.refresh()
+
+
 def kernel(function=None, *, parallel: bool = False, inline: bool = False):
     """``numba.njit`` with the project's options; usable as ``@kernel`` or ``@kernel(parallel=True)``. Before
     numba is imported, a :class:`LazyKernel` that imports it on first use."""
