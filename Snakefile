@@ -6,10 +6,10 @@
 import os
 import sys
 
-# nps is an installed package (pip install -r requirements.txt installs it editable). Keep numba's on-disk
-# cache inside the project: its key must not depend on the temporary copy of a script in .snakemake/scripts.
+# nps is an installed package (pip install -r requirements.txt installs it editable). numba's on-disk cache is
+# nps.core.jit's (NUMBA_CACHE_DIR if set, else nps/__pycache__/numba, per source version): one cache for the
+# jobs, the `python -m nps` commands, the Python API and the tests, so a kernel compiles once on a machine.
 os.environ.update(MPLBACKEND="Agg")
-os.environ.setdefault("NUMBA_CACHE_DIR", os.path.join(workflow.basedir, ".numba_cache"))
 
 # The campaign file: config/config.yaml, or the one `--configfile FILE` names (then it alone, not merged
 # with the bundled one). A YAML syntax error stops here with the file, line and column and no traceback

@@ -1,7 +1,7 @@
 """Campaign wall time: the bundled study (config/) run from an empty results/ with `snakemake -j2 all`.
 
 Copies config/ into a temporary working directory, runs the repository's Snakefile there (warm numba
-cache: the repository's .numba_cache, unless --cold gives it an empty one), then a second time (the
+cache: nps.core.jit's, the one of the package's commands and tests, unless --cold gives it an empty one), then a second time (the
 no-op rerun), and prints both wall times and the per-rule table of benchmarks/campaign_times.py.
 ``--study-only`` leaves out the products added after the chapter-7 study (mission footprint and
 certification, tone tables), i.e. the campaign whose time issue 16 measured. ``--free-wake`` sets
@@ -33,10 +33,10 @@ REPO = Path(__file__).resolve().parents[1]
 from campaign_times import stage_table
 
 
-def snakemake(workdir: Path, cache: Path, *args: str, job_server: bool = True) -> tuple[float, float]:
-    """Run the repository's workflow in ``workdir``; (wall s, CPU s of snakemake and its jobs, the job server's
-    included)."""
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
+def snakemake(workdir: Path, cache: Path | None, *args: str, job_server: bool = True) -> tuple[float, float]:
+    """Run the repository's workflow in ``workdir`` with numba's cache in ``cache`` (None: nps.core.jit's default);
+    (wall s, CPU s of snakemake and its jobs, the job server's included)."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache)) if cache else dict(os.environ)
     if not job_server:
         env["NPS_JOB_SERVER"] = "off"
     cpu0, started = os.times(), time.perf_counter()
@@ -73,7 +73,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.free_wake:
         config["wake"]["model"] = "free"
     config_path.write_text(yaml.safe_dump(config, sort_keys=False))
-    cache = Path(tempfile.mkdtemp(prefix="nps-numba-")) if args.cold else REPO / ".numba_cache"
+    cache = Path(tempfile.mkdtemp(prefix="nps-numba-")) if args.cold else None
     extra = ["--set-threads", f"wake={args.wake_threads}"] if args.wake_threads else []
     server = not args.without_job_server
     (full, cpu), (noop, _) = (snakemake(workdir, cache, "-j2", "all", *extra, job_server=server),

@@ -50,7 +50,7 @@ def rig_wake_time() -> None:
         rig["resolution"] = {**rig["resolution"], **{k: campaign[k] for k in ("n_psi", "n_r", "wake_revolutions")}}
         rig["wake"]["free"] = {"common_period": True}
         yaml.safe_dump(rig, open(rig_file, "w"), sort_keys=False)
-        env = dict(os.environ, NUMBA_CACHE_DIR=str(REPO / ".numba_cache"))
+        env = dict(os.environ)
         start = time.perf_counter()
         run = subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(work), "-j2",
                               f"results/rigs/{RIG}/wake"], capture_output=True, text=True, env=env)

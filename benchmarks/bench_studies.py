@@ -69,7 +69,7 @@ def run(name: str) -> None:
         (workdir / "config/rigs").mkdir()
         if name == "hundred":
             (workdir / "config/studies/hundred.yaml").write_text(yaml.safe_dump(HUNDRED, sort_keys=False))
-        env = dict(os.environ, NUMBA_CACHE_DIR=str(REPO / ".numba_cache"))
+        env = dict(os.environ)
         started = time.perf_counter()
         result = subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(workdir),
                                  "-j2", f"study_{study}"], capture_output=True, text=True, env=env)

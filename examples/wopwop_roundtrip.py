@@ -17,7 +17,6 @@ two cores) for the bundled helicopter in seg3 with BVI loads. The same from the 
 from __future__ import annotations
 
 import argparse
-import os
 import subprocess
 import sys
 import tempfile
@@ -62,10 +61,9 @@ def quick_results(workdir: Path) -> Path:
     config = {**TINY, "campaign": {**TINY["campaign"], "aircraft": ["helicopter"], "segments": ["seg3"]}}
     (workdir / "config" / "config.yaml").write_text(yaml.safe_dump(config, sort_keys=False))
     base = "results/helicopter/seg3"
-    env = dict(os.environ, NUMBA_CACHE_DIR=os.environ.get("NUMBA_CACHE_DIR", str(REPO / ".numba_cache")))
     command = [sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(workdir), "-j2",
                f"{base}/acoustics/hemisphere_bvi", f"{base}/wopwop/hemisphere_bvi"]
-    done = subprocess.run(command, capture_output=True, text=True, env=env)
+    done = subprocess.run(command, capture_output=True, text=True)
     if done.returncode:
         raise RuntimeError(done.stderr[-3000:])
     return workdir / base

@@ -53,7 +53,7 @@ def campaign_workdir(workdir: Path, config: dict) -> Path:
 
 
 def _environment() -> dict:
-    return dict(os.environ, NUMBA_CACHE_DIR=str(REPO / ".numba_cache"))
+    return dict(os.environ)
 
 
 def snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:

@@ -89,7 +89,7 @@ def test_bundled_campaign_is_valid():
 def _dry_run(tmp_path: Path, config_text: str) -> subprocess.CompletedProcess:
     shutil.copytree(REPO / "config", tmp_path / "config")
     (tmp_path / "config/config.yaml").write_text(config_text)
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(REPO / ".numba_cache"))
+    env = dict(os.environ)
     return subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(tmp_path), "-n", "all"],
                           capture_output=True, text=True, env=env, timeout=300)
 

@@ -407,7 +407,7 @@ def test_workflow_refuses_the_huge_hemisphere_before_the_first_job(tmp_path):
     config["observer_sets"]["hemisphere"].update(n_elevation=10_000, n_azimuth=100_000)
     shutil.copytree(REPO / "config", tmp_path / "config")
     (tmp_path / "config/config.yaml").write_text(yaml.safe_dump(config))
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(REPO / ".numba_cache"))
+    env = dict(os.environ)
     result = subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(tmp_path), "-n", "all"],
                             capture_output=True, text=True, env=env, timeout=300)
     errors = [line for line in result.stderr.splitlines() if line.startswith("NPS configuration error")]
@@ -425,7 +425,7 @@ def test_workflow_job_refusal_is_one_line_without_traceback(tmp_path):
     mission = yaml.safe_load(mission_path.read_text())
     next(s for s in mission["segments"] if s["id"] == "seg2")["aircraft"]["helicopter"]["forward_speed_mps"] = 200.0
     mission_path.write_text(yaml.safe_dump(mission, sort_keys=False))
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(REPO / ".numba_cache"))
+    env = dict(os.environ)
     env.pop("NPS_DEBUG", None)
     result = subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(tmp_path), "-j1",
                              "results/helicopter/seg2/trim.parquet"], capture_output=True, text=True, env=env, timeout=300)

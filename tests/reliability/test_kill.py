@@ -60,7 +60,7 @@ def test_sigkill_during_a_parquet_write_then_rerun_incomplete(tmp_path):
     hook = tmp_path / "hook"
     hook.mkdir()
     (hook / "sitecustomize.py").write_text(SITECUSTOMIZE)
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(REPO / ".numba_cache"))
+    env = dict(os.environ)
 
     killed = _snakemake(work, "-j2", "all", env={**env, "PYTHONPATH": str(hook)})
     assert killed.returncode == -signal.SIGKILL, killed.stderr[-3000:]

@@ -447,7 +447,7 @@ def test_rig_azimuths_not_a_multiple_of_the_blades_are_refused(tmp_path):
 # ---- through the workflow: snakemake -n study_NAME in a copy of config/ ----
 
 def _dry_run(root: Path, name: str) -> subprocess.CompletedProcess:
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(REPO / ".numba_cache"))
+    env = dict(os.environ)
     command = [sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(root), "-n", "-j1", f"study_{name}"]
     return subprocess.run(command, capture_output=True, text=True, env=env, timeout=600)
 

@@ -29,7 +29,7 @@ NOISE = ("max_oaspl_db", "max_dba_db", "max_bvispl_db")
 
 
 def _snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(REPO / ".numba_cache"))
+    env = dict(os.environ)
     command = [sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(workdir), *args]
     return subprocess.run(command, capture_output=True, text=True, env=env, timeout=1200)
 
