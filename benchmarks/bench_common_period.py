@@ -50,10 +50,9 @@ def rig_wake_time() -> None:
         rig["resolution"] = {**rig["resolution"], **{k: campaign[k] for k in ("n_psi", "n_r", "wake_revolutions")}}
         rig["wake"]["free"] = {"common_period": True}
         yaml.safe_dump(rig, open(rig_file, "w"), sort_keys=False)
-        env = dict(os.environ)
         start = time.perf_counter()
         run = subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(work), "-j2",
-                              f"results/rigs/{RIG}/wake"], capture_output=True, text=True, env=env)
+                              f"results/rigs/{RIG}/wake"], capture_output=True, text=True)
         if run.returncode:
             raise SystemExit(run.stderr[-3000:])
         total = time.perf_counter() - start

@@ -15,7 +15,6 @@ in, from the case logs) against the targets:
 
 from __future__ import annotations
 
-import os
 import re
 import shutil
 import subprocess
@@ -69,10 +68,9 @@ def run(name: str) -> None:
         (workdir / "config/rigs").mkdir()
         if name == "hundred":
             (workdir / "config/studies/hundred.yaml").write_text(yaml.safe_dump(HUNDRED, sort_keys=False))
-        env = dict(os.environ)
         started = time.perf_counter()
         result = subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(workdir),
-                                 "-j2", f"study_{study}"], capture_output=True, text=True, env=env)
+                                 "-j2", f"study_{study}"], capture_output=True, text=True)
         elapsed_min = (time.perf_counter() - started) / 60.0
         if result.returncode != 0:
             raise SystemExit(result.stderr[-3000:])

@@ -52,21 +52,15 @@ def campaign_workdir(workdir: Path, config: dict) -> Path:
     return workdir
 
 
-def _environment() -> dict:
-    return dict(os.environ)
-
-
 def snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
-    """``snakemake`` of the repository's Snakefile in ``workdir`` (``-d``; the repository's numba cache), output
-    captured."""
+    """``snakemake`` of the repository's Snakefile in ``workdir`` (``-d``), output captured."""
     command = [sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(workdir), *args]
-    return subprocess.run(command, capture_output=True, text=True, env=_environment(), timeout=1200)
+    return subprocess.run(command, capture_output=True, text=True, timeout=1200)
 
 
 def nps_command(workdir: Path, *args: str) -> subprocess.CompletedProcess:
-    """``python -m nps ARGS`` of the repository's package run in ``workdir`` (the repository's numba cache), output
-    captured."""
-    env = _environment()
+    """``python -m nps ARGS`` of the repository's package run in ``workdir``, output captured."""
+    env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join(filter(None, (str(REPO), env.get("PYTHONPATH"))))
     return subprocess.run([sys.executable, "-m", "nps", *args], cwd=workdir, capture_output=True, text=True, env=env,
                           timeout=1200)

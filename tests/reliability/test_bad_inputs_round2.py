@@ -407,9 +407,8 @@ def test_workflow_refuses_the_huge_hemisphere_before_the_first_job(tmp_path):
     config["observer_sets"]["hemisphere"].update(n_elevation=10_000, n_azimuth=100_000)
     shutil.copytree(REPO / "config", tmp_path / "config")
     (tmp_path / "config/config.yaml").write_text(yaml.safe_dump(config))
-    env = dict(os.environ)
     result = subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(tmp_path), "-n", "all"],
-                            capture_output=True, text=True, env=env, timeout=300)
+                            capture_output=True, text=True, timeout=300)
     errors = [line for line in result.stderr.splitlines() if line.startswith("NPS configuration error")]
     assert result.returncode != 0
     assert len(errors) == 1 and "observer_sets.hemisphere" in errors[0] and "needs an estimated" in errors[0], result.stderr[-3000:]

@@ -46,7 +46,7 @@ pq.write_table = write_table
 '''
 
 
-def _snakemake(workdir: Path, *args: str, env: dict) -> subprocess.CompletedProcess:
+def _snakemake(workdir: Path, *args: str, env: dict | None = None) -> subprocess.CompletedProcess:
     command = [sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(workdir), *args]
     return subprocess.run(command, capture_output=True, text=True, env=env, timeout=1800, start_new_session=True)
 
@@ -60,15 +60,13 @@ def test_sigkill_during_a_parquet_write_then_rerun_incomplete(tmp_path):
     hook = tmp_path / "hook"
     hook.mkdir()
     (hook / "sitecustomize.py").write_text(SITECUSTOMIZE)
-    env = dict(os.environ)
-
-    killed = _snakemake(work, "-j2", "all", env={**env, "PYTHONPATH": str(hook)})
+    killed = _snakemake(work, "-j2", "all", env={**os.environ, "PYTHONPATH": str(hook)})
     assert killed.returncode == -signal.SIGKILL, killed.stderr[-3000:]
     orphans = sorted((work / "results").rglob(f".{TARGET}.*.tmp"))
     assert orphans, "the kill did not happen during the metrics write"
 
-    assert _snakemake(work, "--unlock", env=env).returncode == 0
-    rerun = _snakemake(work, "-j2", "all", "--rerun-incomplete", env=env)
+    assert _snakemake(work, "--unlock").returncode == 0
+    rerun = _snakemake(work, "-j2", "all", "--rerun-incomplete")
     assert rerun.returncode == 0, rerun.stderr[-3000:]
     assert not list((work / "results").rglob("*.tmp"))
     manifest = {n: d for n, d in read_manifest(tiny_manifest()).items()

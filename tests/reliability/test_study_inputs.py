@@ -7,7 +7,6 @@ validating a single variant (its wall time is benchmarks/bench_study_size.py's).
 from __future__ import annotations
 
 import copy
-import os
 import shutil
 import subprocess
 import sys
@@ -447,9 +446,8 @@ def test_rig_azimuths_not_a_multiple_of_the_blades_are_refused(tmp_path):
 # ---- through the workflow: snakemake -n study_NAME in a copy of config/ ----
 
 def _dry_run(root: Path, name: str) -> subprocess.CompletedProcess:
-    env = dict(os.environ)
     command = [sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(root), "-n", "-j1", f"study_{name}"]
-    return subprocess.run(command, capture_output=True, text=True, env=env, timeout=600)
+    return subprocess.run(command, capture_output=True, text=True, timeout=600)
 
 
 @pytest.mark.parametrize("case", ["same_field_twice", "samples_without_kind", "five_blades_at_72_azimuths"])

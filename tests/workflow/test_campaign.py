@@ -5,7 +5,6 @@ a copy of config/ (two aircraft, two segments, coarse resolution), so the numba 
 repository is reused.
 """
 
-import os
 import re
 import subprocess
 import sys
@@ -24,9 +23,8 @@ REPO = Path(__file__).resolve().parents[2]
 
 
 def _snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
-    env = dict(os.environ)
     command = [sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(workdir), *args]
-    return subprocess.run(command, capture_output=True, text=True, env=env, timeout=1200)
+    return subprocess.run(command, capture_output=True, text=True, timeout=1200)
 
 
 @pytest.fixture(scope="module")

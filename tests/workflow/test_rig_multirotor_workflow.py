@@ -3,7 +3,6 @@
 turns in one main-rotor turn) with each rotor's own control in the re-trim, acoustics, metrics and the loads at its
 stations (station_loads, base and bvi); a dry run of the rig targets."""
 
-import os
 import re
 import shutil
 import subprocess
@@ -20,9 +19,8 @@ RIG = "main_tail_rig"
 
 
 def _snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
-    env = dict(os.environ)
     return subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(workdir), *args],
-                          capture_output=True, text=True, env=env, timeout=900)
+                          capture_output=True, text=True, timeout=900)
 
 
 def _work(tmp_path: Path, keep=(RIG,)) -> Path:

@@ -20,9 +20,8 @@ REPO = Path(__file__).resolve().parents[2]
 
 
 def _snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
-    env = dict(os.environ)
     return subprocess.run([sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(workdir), *args],
-                          capture_output=True, text=True, env=env, timeout=1800)
+                          capture_output=True, text=True, timeout=1800)
 
 
 def test_itr_hover_through_the_rotor_command(tmp_path):

@@ -6,7 +6,6 @@ study of the helicopter: main-rotor speed × the seg3 flight speed (2 × 2 desig
 
 from __future__ import annotations
 
-import os
 import re
 import shutil
 import subprocess
@@ -29,9 +28,8 @@ NOISE = ("max_oaspl_db", "max_dba_db", "max_bvispl_db")
 
 
 def _snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
-    env = dict(os.environ)
     command = [sys.executable, "-m", "snakemake", "-s", str(REPO / "Snakefile"), "-d", str(workdir), *args]
-    return subprocess.run(command, capture_output=True, text=True, env=env, timeout=1200)
+    return subprocess.run(command, capture_output=True, text=True, timeout=1200)
 
 
 def _write_study(workdir: Path, study: dict) -> None:
