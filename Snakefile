@@ -50,26 +50,22 @@ rule all:
 
 # A local run forks its jobs from one server process that imported NPS once (nps.stages.jobserver; environment
 # NPS_JOB_SERVER=off: every job in its own process). Dry runs and cluster runs (an executor plugin) start none.
+from nps.stages import jobserver
+
 JOB_SERVER = None
 
 
 onstart:
-    from nps.stages import jobserver
-
     global JOB_SERVER
     if workflow.local_exec:
         JOB_SERVER = jobserver.start(os.getpid(), os.path.join(".snakemake", "nps-jobserver.log"))
 
 
 onsuccess:
-    from nps.stages import jobserver
-
     jobserver.stop(JOB_SERVER)
 
 
 onerror:
-    from nps.stages import jobserver
-
     jobserver.stop(JOB_SERVER)
 
 

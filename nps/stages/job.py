@@ -12,8 +12,8 @@ start to the stage function imported) and work (the stage function) in seconds, 
 kernel the part of the work that imported numba (on the first kernel call, nps.core.jit), then CPU time and
 resident-memory peak, which ``benchmarks/campaign_times.py`` tabulates per rule.
 
-In a local ``snakemake`` run the Snakefile starts a job server (nps.stages.jobserver) that imported NPS, numba's
-cached kernels and matplotlib once; each job's script sends its plain :func:`job_spec` there (:func:`submit`) and a forked child
+In a local ``snakemake`` run the Snakefile starts a job server (nps.stages.jobserver) that imported NPS, numba
+and matplotlib once; each job's script sends its plain :func:`job_spec` there (:func:`submit`) and a forked child
 runs it with the job's stdout/stderr, environment and directory, so the job skips ~0.5 s of imports and ~0.5 s
 of numba start-up. Without a server (env ``NPS_JOB_SERVER=off``, a cluster node, a command) the job runs in its
 own process; both paths run :func:`run_spec` and write the same artifacts, bit for bit. The timing line also

@@ -13,10 +13,13 @@ code, same inputs, same artifacts, the same log), and the job exits with the chi
 before.
 
 The server is single-threaded and runs no kernel and no I/O on tables, so that forking it is safe: no thread
-pool of numba, OpenBLAS or pyarrow is started before a fork. A job killed by Snakemake closes its connection and
+pool of numba, OpenBLAS or pyarrow is started before a fork. It stays in Snakemake's process group, so that a
+signal to the group (Ctrl-C, a kill of the run) reaches the jobs' children as it reaches jobs in their own
+processes; the server itself ignores Ctrl-C. A job killed by Snakemake closes its connection and
 the server kills its child (no artifact is written after Snakemake gave up the job; writes are atomic,
 nps.app.io). The server exits when told to (:func:`stop`, Snakemake's ``onsuccess``/``onerror``) or when the
-Snakemake process that started it is gone.
+Snakemake process that started it is gone, and removes its socket's directory (private to the user, in the
+temporary directory); a SIGKILL of the whole run leaves that directory and its socket behind.
 
 Snakemake's ``benchmark:`` files measure the job process, i.e. the wall time of the job (the child's work
 included) but not the child's CPU time and memory; the last line of the job's log gives them (``cpu``,
@@ -94,6 +97,7 @@ def serve(path: str, owner_pid: int) -> None:
     signal.signal(signal.SIGCHLD, lambda *_: None)
     stopping = []
     signal.signal(signal.SIGTERM, lambda *_: stopping.append(True))
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C reaches the jobs' children (same process group), not it
     listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     listener.bind(path + ".tmp")
     listener.listen(64)
@@ -153,7 +157,7 @@ def _fork_job(connection: socket.socket, listener: socket.socket, running: dict)
         header, fds, _, _ = socket.recv_fds(connection, REQUEST_HEADER.size, 2)
         if len(header) == REQUEST_HEADER.size:
             request = pickle.loads(receive(connection, REQUEST_HEADER.unpack(header)[0]))
-    except (OSError, pickle.UnpicklingError, EOFError, struct.error):
+    except (OSError, pickle.UnpicklingError, EOFError):  # not a request of nps.stages.job.submit
         request = None
     if request is None or len(fds) != 2:
         for fd in fds:
@@ -168,6 +172,7 @@ def _fork_job(connection: socket.socket, listener: socket.socket, running: dict)
             signal.set_wakeup_fd(-1)
             for number in (signal.SIGCHLD, signal.SIGTERM):
                 signal.signal(number, signal.SIG_DFL)
+            signal.signal(signal.SIGINT, signal.default_int_handler)  # a job's Ctrl-C as in its own process
             listener.close()
             for other in running.values():
                 other.close()
@@ -187,12 +192,13 @@ def _fork_job(connection: socket.socket, listener: socket.socket, running: dict)
 
 
 def _alive(pid: int) -> bool:
+    """Whether process ``pid`` exists (signal 0; a process of another user counts)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
         return False
     except PermissionError:
-        return True
+        pass
     return True
 
 
@@ -208,7 +214,7 @@ def start(owner_pid: int, log_path: str | os.PathLike) -> subprocess.Popen | Non
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [package_root, os.environ.get("PYTHONPATH")])))
     with open(log_path, "w") as log:
         server = subprocess.Popen([sys.executable, "-m", "nps.stages.jobserver", path, str(owner_pid)], env=env,
-                                  stdin=subprocess.DEVNULL, stdout=log, stderr=log, start_new_session=True)
+                                  stdin=subprocess.DEVNULL, stdout=log, stderr=log)
     deadline = time.monotonic() + READY_TIMEOUT_S
     while not os.path.exists(path):
         if server.poll() is not None or time.monotonic() > deadline:

@@ -1,8 +1,9 @@
 """The job server of local workflow runs (nps.stages.jobserver, issue 36): a job forked from the server writes the
-same artifact and log as the job in its own process, reports a refused input as that job does, runs in its own
-process when there is no server, and the server ends with the Snakemake process that started it."""
+same artifact and log as the job in its own process, reports a refused input as that job does, survives a malformed
+request, runs in its own process when there is no server, and the server ends with the Snakemake process that started it."""
 
 import os
+import socket
 import subprocess
 import sys
 import time
@@ -12,7 +13,7 @@ from types import SimpleNamespace
 import pytest
 
 from nps.stages import jobserver
-from nps.stages.job import SERVER_ENV, job_spec, run_spec, submit
+from nps.stages.job import REQUEST_HEADER, SERVER_ENV, job_spec, run_spec, submit
 
 pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="the job server is for Linux")
 
@@ -81,6 +82,19 @@ def test_a_refused_input_is_one_line_on_the_jobs_stderr(server, tmp_path, repo_r
     assert len(lines) == 1 and lines[0].startswith("error: stage 'trim': "), lines
     assert lines[0] in err and "Traceback" not in err
     assert not (tmp_path / "bad.parquet").exists()
+
+
+def test_a_malformed_request_leaves_the_server_serving(server, tmp_path, repo_root):
+    """A request that is not a pickled job (a stray client, a truncated write) is dropped; the next job runs."""
+    with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as stray:
+        stray.connect(os.environ[SERVER_ENV])
+        garbage = b"not a pickle"
+        socket.send_fds(stray, [REQUEST_HEADER.pack(len(garbage))], [1, 2])
+        stray.sendall(garbage)
+        stray.settimeout(10.0)
+        assert stray.recv(16) == b""  # closed by the server, no child forked
+    assert server.poll() is None
+    assert submit(job_spec(_trim_job(tmp_path, repo_root, "after"), "trim")) == 0
 
 
 def test_without_a_server_a_job_runs_in_its_own_process(tmp_path, repo_root, monkeypatch):
