@@ -1,8 +1,9 @@
 """Campaign wall time: the bundled study (config/) run from an empty results/ with `snakemake -j2 all`.
 
 Copies config/ into a temporary working directory, runs the repository's Snakefile there (warm numba
-cache: nps.core.jit's, the one of the package's commands and tests, unless --cold gives it an empty one), then a second time (the
-no-op rerun), and prints both wall times and the per-rule table of benchmarks/campaign_times.py.
+cache: nps.core.jit's, shared with the package's commands and tests, unless --cold gives it an empty one),
+then a second time (the no-op rerun), and prints both wall times and the per-rule table of
+benchmarks/campaign_times.py.
 ``--study-only`` leaves out the products added after the chapter-7 study (mission footprint and
 certification, tone tables), i.e. the campaign whose time issue 16 measured. ``--free-wake`` sets
 ``wake.model: free`` (free-vortex wakes with rotor–rotor interaction, issue 12). Prints the CPU time of
